@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package the build, the tests, the example and the plots need.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+PKGS=(cmake g++ make pkg-config
+      libeigen3-dev petsc-dev slepc-dev libhdf5-openmpi-dev openmpi-bin
+      libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
+      libgtest-dev libgmock-dev libbenchmark-dev
+      hdf5-tools python3-matplotlib python3-h5py python3-numpy)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "Installing: ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,102 @@
+#pragma once
+// HDF5 reading and writing of the layouts in contracts.md, through RAII handles.
+// Matrices are stored row-major (HDF5's own order), float64. Every file carries a
+// `format` attribute ("section/1", "flexbody/1", "results/1") checked on read.
+// Files are written atomically: AtomicH5Writer writes NAME.tmp-PID and renames it
+// on commit(), so a crash never leaves a half-written NAME behind.
+#include <hdf5.h>
+
+#include <Eigen/Dense>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fc {
+
+class H5Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class H5File {
+ public:
+  enum class Mode { Read, Create };
+  H5File() = default;
+  H5File(const std::string& path, Mode mode);
+  ~H5File();
+  H5File(const H5File&) = delete;
+  H5File& operator=(const H5File&) = delete;
+  H5File(H5File&& o) noexcept;
+  H5File& operator=(H5File&& o) noexcept;
+
+  void close();
+  bool isOpen() const { return id_ >= 0; }
+  hid_t id() const { return id_; }
+  const std::string& path() const { return path_; }
+
+  bool exists(const std::string& object_path) const;  // dataset or group
+  std::vector<std::string> children(const std::string& group_path) const;
+
+  // Writers create intermediate groups. Matrices: (rows, cols); vectors: (n).
+  void writeMatrix(const std::string& path, const Eigen::MatrixXd& m);
+  void writeVector(const std::string& path, const Eigen::VectorXd& v);
+  void writeScalar(const std::string& path, double value);
+  void writeInt(const std::string& path, long value);
+  void writeIntVector(const std::string& path, const std::vector<long>& v);
+  void writeIntMatrix(const std::string& path, const Eigen::Matrix<long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& m);
+  void writeString(const std::string& path, const std::string& value);
+  // Rank-3 array (n0, n1, n2), data in C order.
+  void writeArray3(const std::string& path, const std::vector<double>& data, std::size_t n0,
+                   std::size_t n1, std::size_t n2);
+  void createGroup(const std::string& path);
+
+  // Attributes on an object ("/" for the root).
+  void setAttribute(const std::string& object_path, const std::string& name, const std::string& value);
+  void setAttribute(const std::string& object_path, const std::string& name, double value);
+  void setAttribute(const std::string& object_path, const std::string& name, long value);
+  bool hasAttribute(const std::string& object_path, const std::string& name) const;
+  std::string stringAttribute(const std::string& object_path, const std::string& name) const;
+  double doubleAttribute(const std::string& object_path, const std::string& name) const;
+
+  std::vector<hsize_t> shape(const std::string& path) const;
+  Eigen::MatrixXd readMatrix(const std::string& path) const;  // rank 1 -> (n, 1)
+  Eigen::VectorXd readVector(const std::string& path) const;
+  double readScalar(const std::string& path) const;
+  long readInt(const std::string& path) const;
+  std::vector<long> readIntVector(const std::string& path) const;  // any rank, flattened
+  std::string readString(const std::string& path) const;
+  std::vector<double> readArray(const std::string& path) const;   // any rank, flattened C order
+
+  // Checks the root `format` attribute: "KIND/VERSION". Throws H5Error naming the
+  // file when the kind differs or the version is newer than `max_version`.
+  // Returns the version found.
+  int checkFormat(const std::string& kind, int max_version) const;
+
+ private:
+  hid_t id_ = -1;
+  std::string path_;
+};
+
+// Writes to a temporary name beside `final_path`; commit() closes and renames.
+// Destroyed without commit(), it removes the temporary file.
+class AtomicH5Writer {
+ public:
+  explicit AtomicH5Writer(const std::string& final_path);
+  ~AtomicH5Writer();
+  AtomicH5Writer(const AtomicH5Writer&) = delete;
+  AtomicH5Writer& operator=(const AtomicH5Writer&) = delete;
+  H5File& file() { return file_; }
+  const std::string& temporaryPath() const { return tmp_path_; }
+  void commit();
+
+ private:
+  std::string final_path_, tmp_path_;
+  H5File file_;
+  bool committed_ = false;
+};
+
+// Root attributes every output carries: format, units, tool, version, input hash.
+void writeProvenance(H5File& f, const std::string& format, const std::string& tool,
+                     const std::string& inputs_sha256);
+
+}  // namespace fc

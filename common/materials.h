@@ -1,0 +1,52 @@
+#pragma once
+// Linear elastic materials. Stiffness in Voigt order [11, 22, 33, 23, 13, 12]
+// with engineering shear strains (gamma = 2 eps), as VABS and most FE codes.
+#include <Eigen/Dense>
+#include <map>
+#include <string>
+
+#include "common/input.h"
+
+namespace fc {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct Material {
+  enum class Kind { Isotropic, Orthotropic, Anisotropic };
+  std::string name;
+  Kind kind = Kind::Isotropic;
+  double rho = 0.0;
+  Matrix6d C = Matrix6d::Zero();  // stiffness in material axes
+  // Engineering constants (isotropic and orthotropic; NaN for anisotropic).
+  double E1 = 0, E2 = 0, E3 = 0, G12 = 0, G13 = 0, G23 = 0, nu12 = 0, nu13 = 0, nu23 = 0;
+
+  Matrix6d compliance() const { return C.inverse(); }
+};
+
+// Constructors check admissibility (positive moduli, Poisson bounds, positive-
+// definite stiffness) and throw std::invalid_argument with the reason.
+Material makeIsotropic(const std::string& name, double E, double nu, double rho);
+Material makeOrthotropic(const std::string& name, double E1, double E2, double E3, double G12,
+                         double G13, double G23, double nu12, double nu13, double nu23,
+                         double rho);
+Material makeAnisotropic(const std::string& name, const Matrix6d& C, double rho);
+
+using MaterialLibrary = std::map<std::string, Material>;
+
+// Reads a `materials:` block (with `include: FILE`); bad entries raise InputError.
+//   {type: isotropic, E, nu, rho}
+//   {type: orthotropic, E1, E2, E3, G12, G13, G23, nu12, nu13, nu23, rho}
+//   {type: anisotropic, C: 6x6 (Voigt, material axes), rho}
+MaterialLibrary readMaterials(const InputNode& block);
+// Looks up `node`'s scalar as a material name, with a did-you-mean error.
+const Material& lookupMaterial(const MaterialLibrary& lib, const InputNode& node);
+
+// Bond transformation: stiffness in a frame whose axes are the columns of R
+// expressed in the material frame... i.e. C' = T C T^T with T built from R, where
+// R maps material components to the new frame (v' = R v).
+Matrix6d rotateStiffness(const Matrix6d& C, const Eigen::Matrix3d& R);
+// Stiffness of a ply whose fibre (axis 1) lies at `angle_rad` from the laminate x
+// axis, positive about axis 3: the ply's stiffness in laminate axes.
+Matrix6d plyStiffnessInLaminateAxes(const Matrix6d& C, double angle_rad);
+
+}  // namespace fc
