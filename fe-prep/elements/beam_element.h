@@ -1,0 +1,28 @@
+#pragma once
+// Two-node 3-D Timoshenko beam with a fully coupled 6x6 cross-section stiffness
+// (as section-prep computes it, VABS order [extension, shear x2, shear x3,
+// torsion, bending about x2, bending about x3]) and 6x6 section mass matrix.
+// Degrees of freedom, 6 per node, in the BODY frame: [u1 u2 u3 theta1 theta2 theta3].
+#include <Eigen/Dense>
+
+#include "common/materials.h"
+
+namespace fc::fe {
+
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+using Vector12d = Eigen::Matrix<double, 12, 1>;
+
+struct BeamMatrices {
+  Matrix12d K;       // stiffness
+  Matrix12d M;       // consistent mass
+  Vector12d lumped;  // diagonal (lumped) mass: 3 translational + 3 rotary per node
+};
+
+// xa, xb: end nodes (body frame); section_x2: direction of the section's x2 axis
+// (any vector not parallel to the beam; it is orthogonalised). Ks, Ms: section
+// stiffness and mass per unit length about the section origin on the beam axis.
+BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                            const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                            const Matrix6d& Ms);
+
+}  // namespace fc::fe
