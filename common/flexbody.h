@@ -1,0 +1,129 @@
+#pragma once
+// The reduced flexible body: what fe-prep writes and mbs-run reads (format
+// "flexbody/1", layout in ../shared/contracts.md and docs/body-file.md), and the
+// inertia invariants of the floating-frame-of-reference formulation with lumped
+// nodal masses (Ambrosio & Goncalves, Multibody Syst. Dyn. 6 (2001) 163-182;
+// Shabana, Dynamics of Multibody Systems, 3rd ed., ch. 5, sec. 5.5 "inertia
+// shape integrals", here as sums over lumped nodes instead of volume integrals).
+//
+// Kinematics the invariants serve (body frame, undeformed node position s0_k):
+//   node displacement  u_k  = Phi_k w      (Phi_k: rows 0-2 of the node's 6 shape rows)
+//   node rotation      th_k = Theta_k w    (Theta_k: rows 3-5)
+//   deformed position  s_k  = s0_k + Phi_k w
+// Kinetic energy (omega' the body angular velocity in body axes, V = A^T rdot):
+//   T = 1/2 sum_k m_k |V + omega' x s_k + Phi_k wdot|^2
+//     + 1/2 sum_k (omega' + Theta_k wdot)^T J_k (omega' + Theta_k wdot),
+// J_k = diag(nodal rotary inertias), kept fixed in body axes (the small elastic
+// rotation of a node's own inertia is neglected, as in a lumped-mass FE model).
+// Every term of the mass matrix and of the quadratic velocity vector is a
+// polynomial in w whose coefficients are the sums below; mbs-run therefore never
+// loops over nodes. The kernel that uses them: mbs-run/flexible/flexible_inertia.h.
+#include <Eigen/Dense>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fc {
+
+using IndexMatrix = Eigen::Matrix<long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Where a body file came from (root attributes of the file).
+struct Provenance {
+  std::string tool = "fe-prep";
+  std::string version;        // tool version; empty -> fc::version() on write
+  std::string inputs_sha256;  // SHA-256 of the inputs (fc::sha256Files)
+  std::string format;         // filled on read: the file's "flexbody/N"
+};
+
+// A named point of the body where joints and forces attach.
+struct FlexInterface {
+  std::string name;
+  long node = -1;                 // index into FlexBody::nodes it is rigidly attached to
+  Eigen::Vector3d position;       // undeformed body-frame position (may be off the node)
+  Eigen::MatrixXd shapes;         // (n_modes, 6): the point's u1 u2 u3 theta1 theta2 theta3 per mode
+};
+
+struct FlexBody {
+  std::string name;
+  Eigen::MatrixXd nodes;                        // (n_nodes, 3) undeformed, body frame [m]
+  std::map<std::string, IndexMatrix> elements;  // "triangles" (ne,3), "beams" (ne,2): 0-based node indices
+  Eigen::MatrixXd nodal_mass;                   // (n_nodes, 4): lumped mass [kg], rotary inertias about body x,y,z [kg m^2]
+  Eigen::VectorXd eigenvalues;                  // (n_modes) omega^2 [rad^2/s^2], ascending
+  Eigen::VectorXd frequencies_hz;               // (n_modes) omega / (2 pi)
+  // (6 n_nodes, n_modes), node-major: row 6k+d is dof d (u1 u2 u3 th1 th2 th3) of
+  // node k, column j is mode j, normalised to unit modal mass.
+  Eigen::MatrixXd shapes;
+  std::vector<FlexInterface> interfaces;
+  double mass = 0.0;                            // [kg]
+  Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();    // body frame [m]
+  Eigen::Matrix3d inertia_tensor = Eigen::Matrix3d::Zero();    // about the body origin, undeformed [kg m^2]
+
+  long nodeCount() const { return static_cast<long>(nodes.rows()); }
+  int modeCount() const { return static_cast<int>(shapes.cols()); }
+  const FlexInterface& interface(const std::string& name) const;  // throws naming the body and the known names
+};
+
+// The inertia invariants (sums over the lumped nodes k; a, b in {x, y, z};
+// Phi_a = row a of Phi_k, a 1 x nm row; J_k = diag of nodal_mass(k, 1:3)):
+struct InertiaInvariants {
+  int n_modes = 0;
+  double mass = 0.0;                                          // m      = sum m_k
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();     // S0     = sum m_k s0_k
+  Eigen::Matrix3d second_moment = Eigen::Matrix3d::Zero();    // E0     = sum m_k s0_k s0_k^T
+  Eigen::Matrix3d rotary_inertia = Eigen::Matrix3d::Zero();   // Jr     = sum J_k
+  Eigen::MatrixXd modal_first_moment;   // (3, nm)   S1      = sum m_k Phi_k
+  Eigen::MatrixXd modal_second_moment;  // (9, nm)   C, row 3a+b = sum m_k s0_k,a Phi_k,b
+  std::array<Eigen::MatrixXd, 9> modal_products;  // [3a+b] (nm, nm): S_ab = sum m_k Phi_k,a^T Phi_k,b
+  Eigen::MatrixXd rotary_modal;         // (3, nm)   Jt      = sum J_k Theta_k
+  Eigen::MatrixXd rotary_modal_mass;    // (nm, nm)  Jtt     = sum Theta_k^T J_k Theta_k
+
+  // Undeformed inertia tensor about the body origin: tr(E0) I - E0 + Jr.
+  Eigen::Matrix3d inertiaAboutOrigin() const;
+  Eigen::Vector3d centerOfMass() const { return first_moment / mass; }
+  // Modal mass matrix sum_a S_aa + Jtt (the identity for modes normalised with the lumped mass).
+  Eigen::MatrixXd modalMass() const;
+  // The same invariants restricted to the first n modes (n <= n_modes).
+  InertiaInvariants truncated(int n) const;
+};
+
+// Invariants of `body` from its lumped nodal masses and its first n_modes modes
+// (-1: all). Throws std::invalid_argument on inconsistent sizes.
+InertiaInvariants computeInertiaInvariants(const FlexBody& body, int n_modes = -1);
+
+// Invariants of a rigid body (no modes) of mass m, centre of mass c (body frame)
+// and inertia tensor J_c about the centre of mass, in body axes: S0 = m c,
+// E0 = m c c^T, Jr = J_c, so that tr(E0) I - E0 + Jr = J_c + m (c.c I - c c^T).
+InertiaInvariants rigidInvariants(double mass, const Eigen::Vector3d& center_of_mass,
+                                  const Eigen::Matrix3d& inertia_about_com);
+
+// Sets body.mass, center_of_mass and inertia_tensor from the lumped nodal masses.
+void setRigidPropertiesFromLumpedMasses(FlexBody& body);
+
+// Writes the contract layout ("flexbody/1") and the invariants under /invariants/
+// atomically: the file appears whole or not at all. Throws fc::H5Error or
+// std::invalid_argument (inconsistent sizes) naming the file.
+void writeFlexBody(const std::string& path, const FlexBody& body,
+                   const InertiaInvariants& invariants, const Provenance& provenance);
+
+enum class FlexBodyParts {
+  Dynamics,  // what mbs-run needs: modes' eigenvalues/frequencies, interfaces, rigid
+             // properties, invariants; no mesh, nodal masses or nodal shapes
+  All        // everything, including the mesh and the (first n_modes) nodal shapes
+};
+
+struct FlexBodyFile {
+  FlexBody body;                  // first n_modes modes only
+  InertiaInvariants invariants;   // restricted to the first n_modes modes
+  Provenance provenance;
+  int modes_in_file = 0;
+};
+
+// Reads the first n_modes modes (-1: all) of a body file, by hyperslab so that the
+// rest is never read. Errors (fc::H5Error) name the file and say what is wrong:
+// not a flexbody file, a newer format version, fewer modes than asked, a missing
+// or mis-shaped dataset.
+FlexBodyFile readFlexBody(const std::string& path, int n_modes = -1,
+                          FlexBodyParts parts = FlexBodyParts::Dynamics);
+
+}  // namespace fc
