@@ -60,7 +60,7 @@ struct FlexBody {
   Eigen::Matrix3d inertia_tensor = Eigen::Matrix3d::Zero();    // about the body origin, undeformed [kg m^2]
 
   long nodeCount() const { return static_cast<long>(nodes.rows()); }
-  int modeCount() const { return static_cast<int>(shapes.cols()); }
+  int modeCount() const { return static_cast<int>(eigenvalues.size()); }
   const FlexInterface& interface(const std::string& name) const;  // throws naming the body and the known names
 };
 
