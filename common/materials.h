@@ -41,9 +41,9 @@ MaterialLibrary readMaterials(const InputNode& block);
 // Looks up `node`'s scalar as a material name, with a did-you-mean error.
 const Material& lookupMaterial(const MaterialLibrary& lib, const InputNode& node);
 
-// Bond transformation: stiffness in a frame whose axes are the columns of R
-// expressed in the material frame... i.e. C' = T C T^T with T built from R, where
-// R maps material components to the new frame (v' = R v).
+// Bond transformation (Ting, Anisotropic Elasticity, 1996, ch. 2): the stiffness
+// seen in a new frame when vector components transform as v' = R v.
+// C' = T C T^T with T the stress transformation built from R.
 Matrix6d rotateStiffness(const Matrix6d& C, const Eigen::Matrix3d& R);
 // Stiffness of a ply whose fibre (axis 1) lies at `angle_rad` from the laminate x
 // axis, positive about axis 3: the ply's stiffness in laminate axes.

@@ -1,0 +1,394 @@
+#include "common/h5io.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <ctime>
+#include <sstream>
+
+#include "common/version.h"
+
+namespace fc {
+
+namespace {
+
+// HDF5 prints its error stack by default; we report errors ourselves.
+struct SilenceHdf5 {
+  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+};
+const SilenceHdf5 silence_hdf5;
+
+// Owns one HDF5 identifier and closes it with the matching H5xclose.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  ~Handle() {
+    if (id_ >= 0) closer_(id_);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_), closer_(o.closer_) { o.id_ = -1; }
+  hid_t get() const { return id_; }
+  bool ok() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer closer_;
+};
+
+std::string parentOf(const std::string& path) {
+  const auto pos = path.find_last_of('/');
+  if (pos == std::string::npos || pos == 0) return "/";
+  return path.substr(0, pos);
+}
+
+void ensureGroups(hid_t file, const std::string& path, const std::string& fname) {
+  std::string cur;
+  std::stringstream ss(path);
+  std::string part;
+  while (std::getline(ss, part, '/')) {
+    if (part.empty()) continue;
+    cur += "/" + part;
+    if (H5Lexists(file, cur.c_str(), H5P_DEFAULT) > 0) continue;
+    Handle g(H5Gcreate2(file, cur.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    if (!g.ok()) throw H5Error(fname + ": cannot create group " + cur);
+  }
+}
+
+void writeRaw(hid_t file, const std::string& fname, const std::string& path, hid_t mem_type,
+              hid_t file_type, const std::vector<hsize_t>& dims, const void* data) {
+  ensureGroups(file, parentOf(path), fname);
+  if (H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0)
+    throw H5Error(fname + ": dataset " + path + " already exists");
+  Handle space(dims.empty() ? H5Screate(H5S_SCALAR)
+                            : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+               H5Sclose);
+  Handle dset(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                         H5P_DEFAULT),
+              H5Dclose);
+  if (!dset.ok()) throw H5Error(fname + ": cannot create dataset " + path);
+  if (H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw H5Error(fname + ": cannot write dataset " + path);
+}
+
+}  // namespace
+
+H5File::H5File(const std::string& path, Mode mode) : path_(path) {
+  if (mode == Mode::Read) {
+    id_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (id_ < 0) throw H5Error(path + ": cannot open as an HDF5 file (missing or not HDF5)");
+  } else {
+    id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (id_ < 0) throw H5Error(path + ": cannot create HDF5 file");
+  }
+}
+
+H5File::~H5File() { close(); }
+
+H5File::H5File(H5File&& o) noexcept : id_(o.id_), path_(std::move(o.path_)) { o.id_ = -1; }
+
+H5File& H5File::operator=(H5File&& o) noexcept {
+  if (this != &o) {
+    close();
+    id_ = o.id_;
+    path_ = std::move(o.path_);
+    o.id_ = -1;
+  }
+  return *this;
+}
+
+void H5File::close() {
+  if (id_ >= 0) {
+    H5Fclose(id_);
+    id_ = -1;
+  }
+}
+
+bool H5File::exists(const std::string& object_path) const {
+  if (object_path == "/") return true;
+  // Check each level: H5Lexists fails on a missing intermediate group.
+  std::string cur;
+  std::stringstream ss(object_path);
+  std::string part;
+  while (std::getline(ss, part, '/')) {
+    if (part.empty()) continue;
+    cur += "/" + part;
+    if (H5Lexists(id_, cur.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return true;
+}
+
+std::vector<std::string> H5File::children(const std::string& group_path) const {
+  std::vector<std::string> out;
+  Handle g(H5Gopen2(id_, group_path.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.ok()) throw H5Error(path_ + ": no group " + group_path);
+  H5G_info_t info;
+  H5Gget_info(g.get(), &info);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    ssize_t n = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
+                                   H5P_DEFAULT);
+    std::string name(static_cast<std::size_t>(n), '\0');
+    H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), n + 1,
+                       H5P_DEFAULT);
+    out.push_back(name);
+  }
+  return out;
+}
+
+void H5File::createGroup(const std::string& path) { ensureGroups(id_, path, path_); }
+
+void H5File::writeMatrix(const std::string& path, const Eigen::MatrixXd& m) {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> r = m;
+  writeRaw(id_, path_, path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
+           {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())}, r.data());
+}
+
+void H5File::writeVector(const std::string& path, const Eigen::VectorXd& v) {
+  writeRaw(id_, path_, path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {static_cast<hsize_t>(v.size())},
+           v.data());
+}
+
+void H5File::writeScalar(const std::string& path, double value) {
+  writeRaw(id_, path_, path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &value);
+}
+
+void H5File::writeInt(const std::string& path, long value) {
+  writeRaw(id_, path_, path, H5T_NATIVE_LONG, H5T_STD_I64LE, {}, &value);
+}
+
+void H5File::writeIntVector(const std::string& path, const std::vector<long>& v) {
+  writeRaw(id_, path_, path, H5T_NATIVE_LONG, H5T_STD_I64LE, {static_cast<hsize_t>(v.size())},
+           v.data());
+}
+
+void H5File::writeIntMatrix(
+    const std::string& path,
+    const Eigen::Matrix<long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& m) {
+  writeRaw(id_, path_, path, H5T_NATIVE_LONG, H5T_STD_I64LE,
+           {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())}, m.data());
+}
+
+void H5File::writeArray3(const std::string& path, const std::vector<double>& data, std::size_t n0,
+                         std::size_t n1, std::size_t n2) {
+  if (data.size() != n0 * n1 * n2)
+    throw H5Error(path_ + ": " + path + ": data size does not match its shape");
+  writeRaw(id_, path_, path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {n0, n1, n2}, data.data());
+}
+
+void H5File::writeString(const std::string& path, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  const std::string v = value.empty() ? std::string(1, '\0') : value;
+  writeRaw(id_, path_, path, type.get(), type.get(), {}, v.data());
+}
+
+namespace {
+Handle openObject(hid_t file, const std::string& fname, const std::string& object_path) {
+  Handle obj(H5Oopen(file, object_path.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!obj.ok()) throw H5Error(fname + ": no object " + object_path);
+  return obj;
+}
+
+void writeAttribute(hid_t file, const std::string& fname, const std::string& object_path,
+                    const std::string& name, hid_t type, const void* data) {
+  Handle obj = openObject(file, fname, object_path);
+  if (H5Aexists(obj.get(), name.c_str()) > 0) H5Adelete(obj.get(), name.c_str());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj.get(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose);
+  if (!attr.ok() || H5Awrite(attr.get(), type, data) < 0)
+    throw H5Error(fname + ": cannot write attribute " + name + " on " + object_path);
+}
+}  // namespace
+
+void H5File::setAttribute(const std::string& object_path, const std::string& name,
+                          const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  const std::string v = value.empty() ? std::string(1, '\0') : value;
+  writeAttribute(id_, path_, object_path, name, type.get(), v.data());
+}
+
+void H5File::setAttribute(const std::string& object_path, const std::string& name, double value) {
+  writeAttribute(id_, path_, object_path, name, H5T_NATIVE_DOUBLE, &value);
+}
+
+void H5File::setAttribute(const std::string& object_path, const std::string& name, long value) {
+  writeAttribute(id_, path_, object_path, name, H5T_NATIVE_LONG, &value);
+}
+
+bool H5File::hasAttribute(const std::string& object_path, const std::string& name) const {
+  if (!exists(object_path)) return false;
+  Handle obj = openObject(id_, path_, object_path);
+  return H5Aexists(obj.get(), name.c_str()) > 0;
+}
+
+std::string H5File::stringAttribute(const std::string& object_path,
+                                    const std::string& name) const {
+  Handle obj = openObject(id_, path_, object_path);
+  Handle attr(H5Aopen(obj.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!attr.ok()) throw H5Error(path_ + ": no attribute '" + name + "' on " + object_path);
+  Handle ftype(H5Aget_type(attr.get()), H5Tclose);
+  if (H5Tget_class(ftype.get()) != H5T_STRING)
+    throw H5Error(path_ + ": attribute '" + name + "' on " + object_path + " is not a string");
+  if (H5Tis_variable_str(ftype.get()) > 0) {
+    Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(mtype.get(), H5T_VARIABLE);
+    char* s = nullptr;
+    H5Aread(attr.get(), mtype.get(), &s);
+    std::string out = s ? s : "";
+    H5free_memory(s);
+    return out;
+  }
+  // One byte more than stored: a NULLTERM memory type of the same size would
+  // drop the last character of a NULLPAD string.
+  const std::size_t n = H5Tget_size(ftype.get()) + 1;
+  std::string buf(n, '\0');
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mtype.get(), n);
+  H5Aread(attr.get(), mtype.get(), buf.data());
+  return buf.substr(0, buf.find('\0'));
+}
+
+double H5File::doubleAttribute(const std::string& object_path, const std::string& name) const {
+  Handle obj = openObject(id_, path_, object_path);
+  Handle attr(H5Aopen(obj.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!attr.ok()) throw H5Error(path_ + ": no attribute '" + name + "' on " + object_path);
+  double v = 0;
+  H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v);
+  return v;
+}
+
+std::vector<hsize_t> H5File::shape(const std::string& path) const {
+  Handle dset(H5Dopen2(id_, path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dset.ok()) throw H5Error(path_ + ": missing dataset " + path);
+  Handle space(H5Dget_space(dset.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims;
+}
+
+namespace {
+template <typename T>
+std::vector<T> readAll(hid_t file, const std::string& fname, const std::string& path,
+                       hid_t mem_type) {
+  Handle dset(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dset.ok()) throw H5Error(fname + ": missing dataset " + path);
+  Handle space(H5Dget_space(dset.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (n > 0 && H5Dread(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw H5Error(fname + ": cannot read dataset " + path + " as numbers");
+  return out;
+}
+}  // namespace
+
+std::vector<double> H5File::readArray(const std::string& path) const {
+  return readAll<double>(id_, path_, path, H5T_NATIVE_DOUBLE);
+}
+
+Eigen::MatrixXd H5File::readMatrix(const std::string& path) const {
+  const auto dims = shape(path);
+  const auto data = readArray(path);
+  if (dims.size() > 2) throw H5Error(path_ + ": " + path + " has rank > 2");
+  const Eigen::Index rows = dims.empty() ? 1 : static_cast<Eigen::Index>(dims[0]);
+  const Eigen::Index cols = dims.size() == 2 ? static_cast<Eigen::Index>(dims[1]) : 1;
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      data.data(), rows, cols);
+}
+
+Eigen::VectorXd H5File::readVector(const std::string& path) const {
+  const auto data = readArray(path);
+  return Eigen::Map<const Eigen::VectorXd>(data.data(), static_cast<Eigen::Index>(data.size()));
+}
+
+double H5File::readScalar(const std::string& path) const {
+  const auto data = readArray(path);
+  if (data.size() != 1) throw H5Error(path_ + ": " + path + " is not a scalar");
+  return data[0];
+}
+
+long H5File::readInt(const std::string& path) const {
+  const auto data = readAll<long>(id_, path_, path, H5T_NATIVE_LONG);
+  if (data.size() != 1) throw H5Error(path_ + ": " + path + " is not a scalar");
+  return data[0];
+}
+
+std::vector<long> H5File::readIntVector(const std::string& path) const {
+  return readAll<long>(id_, path_, path, H5T_NATIVE_LONG);
+}
+
+std::string H5File::readString(const std::string& path) const {
+  Handle dset(H5Dopen2(id_, path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dset.ok()) throw H5Error(path_ + ": missing dataset " + path);
+  Handle ftype(H5Dget_type(dset.get()), H5Tclose);
+  const std::size_t n = H5Tget_size(ftype.get()) + 1;
+  std::string buf(n, '\0');
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mtype.get(), n);
+  H5Dread(dset.get(), mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data());
+  return buf.substr(0, buf.find('\0'));
+}
+
+int H5File::checkFormat(const std::string& kind, int max_version) const {
+  if (!hasAttribute("/", "format"))
+    throw H5Error(path_ + ": not a " + kind + " file (no 'format' attribute; expected \"" + kind +
+                  "/" + std::to_string(max_version) + "\")");
+  const std::string f = stringAttribute("/", "format");
+  const auto slash = f.find('/');
+  const std::string k = f.substr(0, slash);
+  if (k != kind || slash == std::string::npos)
+    throw H5Error(path_ + ": format is \"" + f + "\", expected a " + kind + " file (\"" + kind +
+                  "/" + std::to_string(max_version) + "\")");
+  int version = 0;
+  try {
+    version = std::stoi(f.substr(slash + 1));
+  } catch (const std::exception&) {
+    throw H5Error(path_ + ": unreadable format version in \"" + f + "\"");
+  }
+  if (version > max_version)
+    throw H5Error(path_ + ": format \"" + f + "\" is newer than this tool reads (up to " + kind +
+                  "/" + std::to_string(max_version) + "); upgrade flexcomp " + FLEXCOMP_VERSION);
+  return version;
+}
+
+AtomicH5Writer::AtomicH5Writer(const std::string& final_path)
+    : final_path_(final_path),
+      tmp_path_(final_path + ".tmp-" + std::to_string(static_cast<long>(getpid()))),
+      file_(tmp_path_, H5File::Mode::Create) {}
+
+AtomicH5Writer::~AtomicH5Writer() {
+  if (!committed_) {
+    file_.close();
+    std::remove(tmp_path_.c_str());
+  }
+}
+
+void AtomicH5Writer::commit() {
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+  file_.close();
+  if (std::rename(tmp_path_.c_str(), final_path_.c_str()) != 0) {
+    std::remove(tmp_path_.c_str());
+    throw H5Error("cannot rename " + tmp_path_ + " to " + final_path_);
+  }
+  committed_ = true;
+}
+
+void writeProvenance(H5File& f, const std::string& format, const std::string& tool,
+                     const std::string& inputs_sha256) {
+  f.setAttribute("/", "format", format);
+  f.setAttribute("/", "units", std::string("SI"));
+  f.setAttribute("/", "tool", tool);
+  f.setAttribute("/", "version", std::string(FLEXCOMP_VERSION));
+  f.setAttribute("/", "inputs_sha256", inputs_sha256);
+  std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  f.setAttribute("/", "created", std::string(buf));
+}
+
+}  // namespace fc

@@ -1,0 +1,178 @@
+#include "common/materials.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace fc {
+
+namespace {
+
+void requirePositive(const std::string& name, const char* what, double v) {
+  if (!(v > 0) || !std::isfinite(v))
+    throw std::invalid_argument("material '" + name + "': " + what + " must be positive, got " +
+                                std::to_string(v));
+}
+
+// Positive-definite stiffness is the admissibility condition for any linear
+// elastic material (strain energy > 0); the Poisson bounds follow from it.
+void requirePositiveDefinite(const std::string& name, const Matrix6d& C) {
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(0.5 * (C + C.transpose()));
+  if ((C - C.transpose()).norm() > 1e-9 * C.norm())
+    throw std::invalid_argument("material '" + name + "': stiffness matrix is not symmetric");
+  if (es.eigenvalues().minCoeff() <= 0) {
+    std::ostringstream os;
+    os << "material '" << name
+       << "': stiffness is not positive definite (smallest eigenvalue "
+       << es.eigenvalues().minCoeff()
+       << "): the Poisson ratios are outside the admissible bounds for these moduli";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+}  // namespace
+
+Material makeOrthotropic(const std::string& name, double E1, double E2, double E3, double G12,
+                         double G13, double G23, double nu12, double nu13, double nu23,
+                         double rho) {
+  requirePositive(name, "E1", E1);
+  requirePositive(name, "E2", E2);
+  requirePositive(name, "E3", E3);
+  requirePositive(name, "G12", G12);
+  requirePositive(name, "G13", G13);
+  requirePositive(name, "G23", G23);
+  requirePositive(name, "rho", rho);
+  // Bounds |nu_ij| < sqrt(E_i/E_j) (Lempriere 1968), checked first for a precise message.
+  auto bound = [&](const char* which, double nu, double Ei, double Ej) {
+    if (std::abs(nu) >= std::sqrt(Ei / Ej))
+      throw std::invalid_argument("material '" + name + "': |" + which + "| = " +
+                                  std::to_string(std::abs(nu)) + " must be below sqrt(" +
+                                  std::to_string(Ei) + "/" + std::to_string(Ej) + ")");
+  };
+  bound("nu12", nu12, E1, E2);
+  bound("nu13", nu13, E1, E3);
+  bound("nu23", nu23, E2, E3);
+  Matrix6d S = Matrix6d::Zero();
+  S(0, 0) = 1 / E1;
+  S(1, 1) = 1 / E2;
+  S(2, 2) = 1 / E3;
+  S(0, 1) = S(1, 0) = -nu12 / E1;
+  S(0, 2) = S(2, 0) = -nu13 / E1;
+  S(1, 2) = S(2, 1) = -nu23 / E2;
+  S(3, 3) = 1 / G23;
+  S(4, 4) = 1 / G13;
+  S(5, 5) = 1 / G12;
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(S);
+  if (es.eigenvalues().minCoeff() <= 0)
+    throw std::invalid_argument(
+        "material '" + name +
+        "': compliance is not positive definite (1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 "
+        "nu32 nu13 <= 0): inadmissible Poisson ratios");
+  Material m;
+  m.name = name;
+  m.kind = Material::Kind::Orthotropic;
+  m.rho = rho;
+  m.C = S.inverse();
+  m.C = 0.5 * (m.C + m.C.transpose());
+  m.E1 = E1, m.E2 = E2, m.E3 = E3, m.G12 = G12, m.G13 = G13, m.G23 = G23;
+  m.nu12 = nu12, m.nu13 = nu13, m.nu23 = nu23;
+  return m;
+}
+
+Material makeIsotropic(const std::string& name, double E, double nu, double rho) {
+  requirePositive(name, "E", E);
+  if (!(nu > -1.0 && nu < 0.5))
+    throw std::invalid_argument("material '" + name + "': Poisson ratio nu = " +
+                                std::to_string(nu) + " must lie in (-1, 0.5)");
+  const double G = E / (2 * (1 + nu));
+  Material m = makeOrthotropic(name, E, E, E, G, G, G, nu, nu, nu, rho);
+  m.kind = Material::Kind::Isotropic;
+  return m;
+}
+
+Material makeAnisotropic(const std::string& name, const Matrix6d& C, double rho) {
+  requirePositive(name, "rho", rho);
+  requirePositiveDefinite(name, C);
+  Material m;
+  m.name = name;
+  m.kind = Material::Kind::Anisotropic;
+  m.rho = rho;
+  m.C = 0.5 * (C + C.transpose());
+  const double nan = std::nan("");
+  m.E1 = m.E2 = m.E3 = m.G12 = m.G13 = m.G23 = m.nu12 = m.nu13 = m.nu23 = nan;
+  return m;
+}
+
+MaterialLibrary readMaterials(const InputNode& block) {
+  MaterialLibrary lib;
+  for (const auto& [name, node] : namedEntries(block)) {
+    const std::string type = node["type"].asString();
+    try {
+      if (type == "isotropic") {
+        node.allowKeys({"type", "E", "nu", "rho"});
+        lib[name] = makeIsotropic(name, node["E"].asPositive(), node["nu"].asDouble(),
+                                  node["rho"].asPositive());
+      } else if (type == "orthotropic") {
+        node.allowKeys({"type", "E1", "E2", "E3", "G12", "G13", "G23", "nu12", "nu13", "nu23",
+                        "rho"});
+        lib[name] = makeOrthotropic(
+            name, node["E1"].asPositive(), node["E2"].asPositive(), node["E3"].asPositive(),
+            node["G12"].asPositive(), node["G13"].asPositive(), node["G23"].asPositive(),
+            node["nu12"].asDouble(), node["nu13"].asDouble(), node["nu23"].asDouble(),
+            node["rho"].asPositive());
+      } else if (type == "anisotropic") {
+        node.allowKeys({"type", "C", "rho"});
+        lib[name] = makeAnisotropic(name, node["C"].asMatrix(6, 6), node["rho"].asPositive());
+      } else {
+        node["type"].fail("unknown material type '" + type +
+                          "'; expected isotropic, orthotropic or anisotropic");
+      }
+    } catch (const std::invalid_argument& e) {
+      node.fail(e.what());
+    }
+  }
+  return lib;
+}
+
+const Material& lookupMaterial(const MaterialLibrary& lib, const InputNode& node) {
+  const std::string name = node.asString();
+  auto it = lib.find(name);
+  if (it != lib.end()) return it->second;
+  std::vector<std::string> names;
+  for (const auto& kv : lib) names.push_back(kv.first);
+  std::string msg = "unknown material '" + name + "'";
+  const std::string guess = closestMatch(name, names);
+  if (!guess.empty()) msg += " (did you mean '" + guess + "'?)";
+  msg += names.empty() ? "; no materials are defined" : "; defined materials: ";
+  for (std::size_t i = 0; i < names.size(); ++i) msg += (i ? ", " : "") + names[i];
+  node.fail(msg);
+}
+
+Matrix6d rotateStiffness(const Matrix6d& C, const Eigen::Matrix3d& R) {
+  // Stress transformation for Voigt order [11,22,33,23,13,12]: sigma' = T sigma,
+  // and with engineering shear strains eps = T^T eps', so C' = T C T^T.
+  static const int pi[6] = {0, 1, 2, 1, 0, 0};
+  static const int pj[6] = {0, 1, 2, 2, 2, 1};
+  Matrix6d T;
+  for (int I = 0; I < 6; ++I) {
+    const int i = pi[I], j = pj[I];
+    for (int J = 0; J < 6; ++J) {
+      const int k = pi[J], l = pj[J];
+      if (J < 3)
+        T(I, J) = R(i, k) * R(j, l);
+      else
+        T(I, J) = R(i, k) * R(j, l) + R(i, l) * R(j, k);
+    }
+  }
+  return T * C * T.transpose();
+}
+
+Matrix6d plyStiffnessInLaminateAxes(const Matrix6d& C, double angle_rad) {
+  // Material components map to laminate components through Rz(angle).
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  Eigen::Matrix3d R;
+  R << c, -s, 0, s, c, 0, 0, 0, 1;
+  return rotateStiffness(C, R);
+}
+
+}  // namespace fc

@@ -1,0 +1,132 @@
+// HDF5 round trips, format checks and atomic writes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "common/h5io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string tempPath(const std::string& name) {
+  return (fs::path(::testing::TempDir()) / name).string();
+}
+}  // namespace
+
+TEST(H5io, RoundTripRowMajor) {
+  const std::string path = tempPath("rt.h5");
+  Eigen::MatrixXd m(2, 3);
+  m << 1, 2, 3, 4, 5, 6;
+  Eigen::VectorXd v(4);
+  v << 0.5, -1, 2, 1e-300;
+  {
+    fc::AtomicH5Writer w(path);
+    w.file().writeMatrix("/stiffness/timoshenko", m);
+    w.file().writeVector("/a/b/c", v);
+    w.file().writeScalar("/mass/per_length", 0.0455);
+    w.file().writeInt("/interfaces/S1/node", 17);
+    w.file().writeIntVector("/ints", {3, 1, 4});
+    w.file().writeString("/name", "panel2");
+    std::vector<double> a3(2 * 3 * 4);
+    for (std::size_t i = 0; i < a3.size(); ++i) a3[i] = static_cast<double>(i);
+    w.file().writeArray3("/modes/shapes", a3, 2, 3, 4);
+    fc::writeProvenance(w.file(), "section/1", "test", "abc");
+    w.file().setAttribute("/stiffness", "order", std::string("VABS"));
+    w.commit();
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.checkFormat("section", 1), 1);
+  EXPECT_EQ(f.readMatrix("/stiffness/timoshenko"), m);
+  EXPECT_EQ(f.readVector("/a/b/c"), v);
+  EXPECT_DOUBLE_EQ(f.readScalar("/mass/per_length"), 0.0455);
+  EXPECT_EQ(f.readInt("/interfaces/S1/node"), 17);
+  EXPECT_EQ(f.readIntVector("/ints"), (std::vector<long>{3, 1, 4}));
+  EXPECT_EQ(f.readString("/name"), "panel2");
+  EXPECT_EQ(f.shape("/modes/shapes"), (std::vector<hsize_t>{2, 3, 4}));
+  // C order: element (1, 2, 3) is at 1*12 + 2*4 + 3 = 23.
+  EXPECT_DOUBLE_EQ(f.readArray("/modes/shapes")[23], 23.0);
+  EXPECT_EQ(f.stringAttribute("/", "units"), "SI");
+  EXPECT_EQ(f.stringAttribute("/stiffness", "order"), "VABS");
+  EXPECT_TRUE(f.exists("/a/b"));
+  EXPECT_FALSE(f.exists("/a/x/y"));
+  EXPECT_EQ(f.children("/a"), std::vector<std::string>{"b"});
+}
+
+TEST(H5io, FormatChecks) {
+  const std::string path = tempPath("fmt.h5");
+  {
+    fc::AtomicH5Writer w(path);
+    fc::writeProvenance(w.file(), "flexbody/2", "test", "");
+    w.commit();
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.checkFormat("flexbody", 2), 2);
+  try {
+    f.checkFormat("flexbody", 1);
+    FAIL();
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("newer"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
+  }
+  EXPECT_THROW(f.checkFormat("results", 1), fc::H5Error);
+}
+
+TEST(H5io, MissingDatasetAndFileErrors) {
+  EXPECT_THROW(fc::H5File("/nonexistent/none.h5", fc::H5File::Mode::Read), fc::H5Error);
+  const std::string path = tempPath("missing.h5");
+  {
+    fc::AtomicH5Writer w(path);
+    w.commit();
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  try {
+    f.readMatrix("/modes/shapes");
+    FAIL();
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/modes/shapes"), std::string::npos);
+  }
+}
+
+TEST(H5io, AbandonedWriteLeavesNothing) {
+  const std::string path = tempPath("abandoned.h5");
+  std::remove(path.c_str());
+  std::string tmp;
+  try {
+    fc::AtomicH5Writer w(path);
+    tmp = w.temporaryPath();
+    w.file().writeScalar("/x", 1.0);
+    EXPECT_TRUE(fs::exists(tmp));
+    throw std::runtime_error("solver failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
+TEST(H5io, KilledWriterNeverLeavesTheFinalName) {
+  // A process killed mid-write (no destructors run) may leave its temporary file,
+  // but never a half-written file under the final name, and an older complete
+  // file stays intact.
+  const std::string path = tempPath("killed.h5");
+  {
+    fc::AtomicH5Writer w(path);
+    w.file().writeScalar("/old", 1.0);
+    w.commit();
+  }
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    fc::AtomicH5Writer w(path);
+    w.file().writeScalar("/new", 2.0);
+    _exit(0);  // dies without commit, without destructors
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_TRUE(f.exists("/old"));
+  EXPECT_FALSE(f.exists("/new"));
+  std::remove((path + ".tmp-" + std::to_string(pid)).c_str());
+}
