@@ -1,0 +1,372 @@
+#include "common/flexbody.h"
+
+#include <hdf5.h>
+
+#include <sstream>
+#include <stdexcept>
+
+#include "common/h5io.h"
+#include "common/version.h"
+
+namespace fc {
+
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+std::string str(long v) { return std::to_string(v); }
+
+// The node's 3 x nm translational (d0 = 0) or rotational (d0 = 3) shape rows.
+Eigen::MatrixXd nodeRows(const Eigen::MatrixXd& shapes, long k, int d0, int nm) {
+  return shapes.block(6 * k + d0, 0, 3, nm);
+}
+
+// ---- raw HDF5 for rank > 3 writes and partial (hyperslab) reads -------------
+
+struct Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  ~Handle() {
+    if (id >= 0) close(id);
+  }
+};
+
+void writeArray(H5File& f, const std::string& path, const std::vector<hsize_t>& dims,
+                const double* data) {
+  Handle lcpl{H5Pcreate(H5P_LINK_CREATE), H5Pclose};
+  H5Pset_create_intermediate_group(lcpl.id, 1);
+  Handle space{H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose};
+  Handle set{H5Dcreate2(f.id(), path.c_str(), H5T_IEEE_F64LE, space.id, lcpl.id, H5P_DEFAULT,
+                        H5P_DEFAULT),
+             H5Dclose};
+  bool empty = false;
+  for (hsize_t d : dims) empty = empty || d == 0;
+  if (set.id < 0 || (!empty && H5Dwrite(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+    throw H5Error(f.path() + ": cannot write dataset " + path);
+}
+
+std::string dimsText(const std::vector<hsize_t>& d) {
+  std::ostringstream s;
+  s << "(";
+  for (std::size_t i = 0; i < d.size(); ++i) s << (i ? ", " : "") << d[i];
+  s << ")";
+  return s.str();
+}
+
+// Reads the leading block [0, count_i) of each dimension of a float64 dataset whose
+// shape must be (>= count_0, ..., exactly count_i where exact[i]). Only that block
+// is transferred from the file.
+std::vector<double> readLeading(const H5File& f, const std::string& path,
+                                const std::vector<hsize_t>& count,
+                                const std::vector<bool>& exact) {
+  if (!f.exists(path)) throw H5Error(f.path() + ": missing dataset " + path + " (flexbody/1 layout)");
+  const std::vector<hsize_t> shape = f.shape(path);
+  bool ok = shape.size() == count.size();
+  for (std::size_t i = 0; ok && i < count.size(); ++i)
+    ok = exact[i] ? shape[i] == count[i] : shape[i] >= count[i];
+  if (!ok)
+    throw H5Error(f.path() + ": dataset " + path + " has shape " + dimsText(shape) +
+                  ", expected at least " + dimsText(count));
+  std::size_t n = 1;
+  for (hsize_t c : count) n *= c;
+  std::vector<double> out(n);
+  if (n == 0) return out;
+  Handle set{H5Dopen2(f.id(), path.c_str(), H5P_DEFAULT), H5Dclose};
+  Handle fspace{H5Dget_space(set.id), H5Sclose};
+  std::vector<hsize_t> start(count.size(), 0);
+  H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  Handle mspace{H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose};
+  if (H5Dread(set.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, H5P_DEFAULT, out.data()) < 0)
+    throw H5Error(f.path() + ": cannot read dataset " + path);
+  return out;
+}
+
+// Row-major (rows, cols) block into an Eigen matrix.
+Eigen::MatrixXd rowMajor(const std::vector<double>& d, long rows, long cols) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      d.data(), rows, cols);
+}
+
+void requireSizes(const FlexBody& b, const InertiaInvariants* inv, const std::string& where) {
+  const long n = b.nodeCount();
+  const int nm = b.modeCount();
+  auto bad = [&](const std::string& what) {
+    throw std::invalid_argument(where + ": body '" + b.name + "': " + what);
+  };
+  if (b.nodes.cols() != 3) bad("nodes must be (n_nodes, 3), got " + str(b.nodes.cols()) + " columns");
+  if (b.nodal_mass.rows() != n || b.nodal_mass.cols() != 4)
+    bad("nodal_mass must be (" + str(n) + ", 4), got (" + str(b.nodal_mass.rows()) + ", " +
+        str(b.nodal_mass.cols()) + ")");
+  if ((b.shapes.rows() != 6 * n || b.shapes.cols() != nm) && !(nm == 0 && b.shapes.size() == 0))
+    bad("shapes must be (6 n_nodes, n_modes) = (" + str(6 * n) + ", " + str(nm) + "), got (" +
+        str(b.shapes.rows()) + ", " + str(b.shapes.cols()) + ")");
+  if (b.frequencies_hz.size() != nm)
+    bad("frequencies_hz must have one entry per eigenvalue (" + str(nm) + ")");
+  for (const auto& it : b.interfaces) {
+    if (it.node < 0 || it.node >= n) bad("interface " + it.name + ": node " + str(it.node) + " out of range");
+    if (it.shapes.rows() != nm || it.shapes.cols() != 6)
+      bad("interface " + it.name + ": shapes must be (" + str(nm) + ", 6)");
+  }
+  for (const auto& [type, conn] : b.elements)
+    for (long i = 0; i < conn.size(); ++i)
+      if (conn.data()[i] < 0 || conn.data()[i] >= n) bad("elements " + type + ": node index out of range");
+  if (inv && inv->n_modes != nm)
+    bad("invariants are for " + str(inv->n_modes) + " modes, the body has " + str(nm));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+const FlexInterface& FlexBody::interface(const std::string& n) const {
+  std::string known;
+  for (const auto& it : interfaces) {
+    if (it.name == n) return it;
+    known += (known.empty() ? "" : ", ") + it.name;
+  }
+  throw std::out_of_range("body '" + name + "' has no interface '" + n + "' (it has: " +
+                          (known.empty() ? "none" : known) + ")");
+}
+
+Eigen::Matrix3d InertiaInvariants::inertiaAboutOrigin() const {
+  return second_moment.trace() * Eigen::Matrix3d::Identity() - second_moment + rotary_inertia;
+}
+
+Eigen::MatrixXd InertiaInvariants::modalMass() const {
+  Eigen::MatrixXd m = rotary_modal_mass;
+  for (int a = 0; a < 3; ++a) m += modal_products[4 * a];
+  return m;
+}
+
+InertiaInvariants InertiaInvariants::truncated(int n) const {
+  if (n < 0 || n > n_modes)
+    throw std::invalid_argument("invariants hold " + std::to_string(n_modes) + " modes, " +
+                                std::to_string(n) + " asked");
+  InertiaInvariants t = *this;
+  t.n_modes = n;
+  t.modal_first_moment = modal_first_moment.leftCols(n);
+  t.modal_second_moment = modal_second_moment.leftCols(n);
+  for (int i = 0; i < 9; ++i) t.modal_products[i] = modal_products[i].topLeftCorner(n, n);
+  t.rotary_modal = rotary_modal.leftCols(n);
+  t.rotary_modal_mass = rotary_modal_mass.topLeftCorner(n, n);
+  return t;
+}
+
+InertiaInvariants computeInertiaInvariants(const FlexBody& body, int n_modes) {
+  requireSizes(body, nullptr, "computeInertiaInvariants");
+  const int nm = n_modes < 0 ? body.modeCount() : n_modes;
+  if (nm > body.modeCount())
+    throw std::invalid_argument("computeInertiaInvariants: body '" + body.name + "' has " +
+                                std::to_string(body.modeCount()) + " modes, " +
+                                std::to_string(nm) + " asked");
+  InertiaInvariants inv;
+  inv.n_modes = nm;
+  inv.modal_first_moment = Eigen::MatrixXd::Zero(3, nm);
+  inv.modal_second_moment = Eigen::MatrixXd::Zero(9, nm);
+  for (auto& s : inv.modal_products) s = Eigen::MatrixXd::Zero(nm, nm);
+  inv.rotary_modal = Eigen::MatrixXd::Zero(3, nm);
+  inv.rotary_modal_mass = Eigen::MatrixXd::Zero(nm, nm);
+
+  for (long k = 0; k < body.nodeCount(); ++k) {
+    const double m = body.nodal_mass(k, 0);
+    const Eigen::Vector3d s0 = body.nodes.row(k).transpose();
+    const Eigen::Matrix3d J = body.nodal_mass.row(k).tail<3>().asDiagonal();
+    inv.mass += m;
+    inv.first_moment += m * s0;
+    inv.second_moment += m * s0 * s0.transpose();
+    inv.rotary_inertia += J;
+    if (nm == 0) continue;
+    const Eigen::MatrixXd Phi = nodeRows(body.shapes, k, 0, nm);
+    const Eigen::MatrixXd Theta = nodeRows(body.shapes, k, 3, nm);
+    inv.modal_first_moment += m * Phi;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        inv.modal_second_moment.row(3 * a + b) += m * s0(a) * Phi.row(b);
+        inv.modal_products[3 * a + b] += m * Phi.row(a).transpose() * Phi.row(b);
+      }
+    inv.rotary_modal += J * Theta;
+    inv.rotary_modal_mass += Theta.transpose() * J * Theta;
+  }
+  return inv;
+}
+
+InertiaInvariants rigidInvariants(double mass, const Eigen::Vector3d& c, const Eigen::Matrix3d& Jc) {
+  InertiaInvariants inv;
+  inv.mass = mass;
+  inv.first_moment = mass * c;
+  inv.second_moment = mass * c * c.transpose();
+  inv.rotary_inertia = Jc;
+  inv.modal_first_moment.resize(3, 0);
+  inv.modal_second_moment.resize(9, 0);
+  for (auto& s : inv.modal_products) s.resize(0, 0);
+  inv.rotary_modal.resize(3, 0);
+  inv.rotary_modal_mass.resize(0, 0);
+  return inv;
+}
+
+void setRigidPropertiesFromLumpedMasses(FlexBody& body) {
+  FlexBody rigid = body;
+  rigid.shapes.resize(6 * body.nodeCount(), 0);
+  rigid.eigenvalues.resize(0);
+  rigid.frequencies_hz.resize(0);
+  rigid.interfaces.clear();
+  const InertiaInvariants inv = computeInertiaInvariants(rigid, 0);
+  body.mass = inv.mass;
+  body.center_of_mass = inv.centerOfMass();
+  body.inertia_tensor = inv.inertiaAboutOrigin();
+}
+
+// ---------------------------------------------------------------------------
+
+void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaInvariants& inv,
+                   const Provenance& prov) {
+  try {
+    requireSizes(body, &inv, path);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("cannot write flexible body file ") + e.what());
+  }
+  const long n = body.nodeCount();
+  const int nm = body.modeCount();
+  const hsize_t un = static_cast<hsize_t>(n), um = static_cast<hsize_t>(nm);
+
+  AtomicH5Writer writer(path);
+  H5File& f = writer.file();
+  writeProvenance(f, "flexbody/" + std::to_string(kFormatVersion), prov.tool, prov.inputs_sha256);
+  if (!prov.version.empty()) f.setAttribute("/", "version", prov.version);
+  f.setAttribute("/", "name", body.name);
+
+  f.writeMatrix("/mesh/nodes", body.nodes);
+  for (const auto& [type, conn] : body.elements) f.writeIntMatrix("/mesh/" + type, conn);
+  f.writeMatrix("/mass/nodal", body.nodal_mass);
+
+  writeArray(f, "/modes/eigenvalues", {um}, body.eigenvalues.data());
+  writeArray(f, "/modes/frequencies_hz", {um}, body.frequencies_hz.data());
+  // Column-major (6n, nm) storage is exactly C-order (nm, n, 6).
+  Eigen::MatrixXd shapes = body.shapes;
+  if (shapes.rows() == 0) shapes.resize(6 * n, 0);
+  writeArray(f, "/modes/shapes", {um, un, 6}, shapes.data());
+
+  f.writeScalar("/inertia/mass", body.mass);
+  f.writeVector("/inertia/center_of_mass", body.center_of_mass);
+  f.writeMatrix("/inertia/tensor", body.inertia_tensor);
+
+  f.createGroup("/interfaces");
+  for (const auto& it : body.interfaces) {
+    const std::string g = "/interfaces/" + it.name;
+    f.writeInt(g + "/node", it.node);
+    f.writeVector(g + "/position", it.position);
+    const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> s = it.shapes;
+    writeArray(f, g + "/shapes", {um, 6}, s.data());
+  }
+
+  // Invariants, mode index leading so that the first nm modes are a leading hyperslab.
+  f.writeScalar("/invariants/mass", inv.mass);
+  f.writeVector("/invariants/first_moment", inv.first_moment);
+  f.writeMatrix("/invariants/second_moment", inv.second_moment);
+  f.writeMatrix("/invariants/rotary_inertia", inv.rotary_inertia);
+  Eigen::MatrixXd s1 = inv.modal_first_moment;  // (3, nm) column-major == C-order (nm, 3)
+  writeArray(f, "/invariants/modal_first_moment", {um, 3}, s1.data());
+  // (nm, 3, 3): [j][a][b] = C(3a+b, j); column-major (9, nm) is that C order.
+  Eigen::MatrixXd c = inv.modal_second_moment;
+  writeArray(f, "/invariants/modal_second_moment", {um, 3, 3}, c.data());
+  std::vector<double> prod(static_cast<std::size_t>(nm) * nm * 9);
+  for (int j = 0; j < nm; ++j)
+    for (int l = 0; l < nm; ++l)
+      for (int ab = 0; ab < 9; ++ab) prod[(static_cast<std::size_t>(j) * nm + l) * 9 + ab] = inv.modal_products[ab](j, l);
+  writeArray(f, "/invariants/modal_products", {um, um, 3, 3}, prod.data());
+  Eigen::MatrixXd jt = inv.rotary_modal;
+  writeArray(f, "/invariants/rotary_modal", {um, 3}, jt.data());
+  Eigen::MatrixXd jtt = inv.rotary_modal_mass;  // symmetric: storage order irrelevant
+  if (jtt.rows() == 0) jtt.resize(0, 0);
+  writeArray(f, "/invariants/rotary_modal_mass", {um, um}, jtt.data());
+  writer.commit();
+}
+
+FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts parts) {
+  H5File f(path, H5File::Mode::Read);
+  FlexBodyFile out;
+  f.checkFormat("flexbody", kFormatVersion);
+  out.provenance.format = f.stringAttribute("/", "format");
+  if (f.hasAttribute("/", "tool")) out.provenance.tool = f.stringAttribute("/", "tool");
+  if (f.hasAttribute("/", "version")) out.provenance.version = f.stringAttribute("/", "version");
+  if (f.hasAttribute("/", "inputs_sha256"))
+    out.provenance.inputs_sha256 = f.stringAttribute("/", "inputs_sha256");
+  FlexBody& b = out.body;
+  if (f.hasAttribute("/", "name")) b.name = f.stringAttribute("/", "name");
+
+  if (!f.exists("/modes/eigenvalues")) throw H5Error(path + ": missing dataset /modes/eigenvalues (flexbody/1 layout)");
+  const std::vector<hsize_t> ev_shape = f.shape("/modes/eigenvalues");
+  const int in_file = ev_shape.empty() ? 0 : static_cast<int>(ev_shape[0]);
+  out.modes_in_file = in_file;
+  const int nm = n_modes < 0 ? in_file : n_modes;
+  if (nm > in_file)
+    throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " +
+                  std::to_string(nm) + " asked (rebuild it with fe-prep 'modes: " +
+                  std::to_string(nm) + "' or ask for fewer)");
+  const hsize_t um = static_cast<hsize_t>(nm);
+
+  const std::vector<double> ev = readLeading(f, "/modes/eigenvalues", {um}, {false});
+  const std::vector<double> fr = readLeading(f, "/modes/frequencies_hz", {um}, {false});
+  b.eigenvalues = Eigen::Map<const Eigen::VectorXd>(ev.data(), nm);
+  b.frequencies_hz = Eigen::Map<const Eigen::VectorXd>(fr.data(), nm);
+
+  b.mass = f.readScalar("/inertia/mass");
+  const std::vector<double> com = readLeading(f, "/inertia/center_of_mass", {3}, {true});
+  b.center_of_mass = Eigen::Vector3d(com[0], com[1], com[2]);
+  b.inertia_tensor = rowMajor(readLeading(f, "/inertia/tensor", {3, 3}, {true, true}), 3, 3);
+
+  if (f.exists("/interfaces"))
+    for (const std::string& name : f.children("/interfaces")) {
+      FlexInterface it;
+      const std::string g = "/interfaces/" + name;
+      it.name = name;
+      it.node = f.readInt(g + "/node");
+      const std::vector<double> p = readLeading(f, g + "/position", {3}, {true});
+      it.position = Eigen::Vector3d(p[0], p[1], p[2]);
+      it.shapes = rowMajor(readLeading(f, g + "/shapes", {um, 6}, {false, true}), nm, 6);
+      b.interfaces.push_back(std::move(it));
+    }
+
+  InertiaInvariants& inv = out.invariants;
+  inv.n_modes = nm;
+  inv.mass = f.readScalar("/invariants/mass");
+  const std::vector<double> s0 = readLeading(f, "/invariants/first_moment", {3}, {true});
+  inv.first_moment = Eigen::Vector3d(s0[0], s0[1], s0[2]);
+  inv.second_moment = rowMajor(readLeading(f, "/invariants/second_moment", {3, 3}, {true, true}), 3, 3);
+  inv.rotary_inertia = rowMajor(readLeading(f, "/invariants/rotary_inertia", {3, 3}, {true, true}), 3, 3);
+  inv.modal_first_moment =
+      rowMajor(readLeading(f, "/invariants/modal_first_moment", {um, 3}, {false, true}), nm, 3).transpose();
+  inv.modal_second_moment =
+      rowMajor(readLeading(f, "/invariants/modal_second_moment", {um, 3, 3}, {false, true, true}), nm, 9)
+          .transpose();
+  const std::vector<double> prod =
+      readLeading(f, "/invariants/modal_products", {um, um, 3, 3}, {false, false, true, true});
+  for (int ab = 0; ab < 9; ++ab) {
+    inv.modal_products[ab].resize(nm, nm);
+    for (int j = 0; j < nm; ++j)
+      for (int l = 0; l < nm; ++l) inv.modal_products[ab](j, l) = prod[(static_cast<std::size_t>(j) * nm + l) * 9 + ab];
+  }
+  inv.rotary_modal = rowMajor(readLeading(f, "/invariants/rotary_modal", {um, 3}, {false, true}), nm, 3).transpose();
+  inv.rotary_modal_mass =
+      rowMajor(readLeading(f, "/invariants/rotary_modal_mass", {um, um}, {false, false}), nm, nm);
+
+  if (parts == FlexBodyParts::All) {
+    b.nodes = f.readMatrix("/mesh/nodes");
+    if (b.nodes.cols() != 3) throw H5Error(path + ": /mesh/nodes must be (n_nodes, 3)");
+    const long n = b.nodes.rows();
+    const hsize_t un = static_cast<hsize_t>(n);
+    for (const std::string& child : f.children("/mesh")) {
+      if (child == "nodes") continue;
+      const std::vector<hsize_t> sh = f.shape("/mesh/" + child);
+      const std::vector<long> flat = f.readIntVector("/mesh/" + child);
+      const long cols = sh.size() == 2 ? static_cast<long>(sh[1]) : 1;
+      b.elements[child] = Eigen::Map<const IndexMatrix>(flat.data(), static_cast<long>(flat.size()) / cols, cols);
+    }
+    b.nodal_mass = rowMajor(readLeading(f, "/mass/nodal", {un, 4}, {true, true}), n, 4);
+    const std::vector<double> sh = readLeading(f, "/modes/shapes", {um, un, 6}, {false, true, true});
+    b.shapes = Eigen::Map<const Eigen::MatrixXd>(sh.data(), 6 * n, nm);
+  }
+  return out;
+}
+
+}  // namespace fc
