@@ -130,3 +130,23 @@ TEST(H5io, KilledWriterNeverLeavesTheFinalName) {
   EXPECT_FALSE(f.exists("/new"));
   std::remove((path + ".tmp-" + std::to_string(pid)).c_str());
 }
+
+#include "common/inspect.h"
+
+TEST(Inspect, DescribesFormatSummaryAndDatasets) {
+  const std::string path = tempPath("inspect.h5");
+  {
+    fc::AtomicH5Writer w(path);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Identity(6, 6) * 2.5;
+    w.file().writeMatrix("/stiffness/timoshenko", K);
+    w.file().writeScalar("/mass/per_length", 0.0455);
+    fc::writeProvenance(w.file(), "section/1", "section-prep", "deadbeef");
+    w.commit();
+  }
+  const std::string text = fc::inspectFile(path);
+  EXPECT_NE(text.find("format: section/1"), std::string::npos) << text;
+  EXPECT_NE(text.find("EA = 2.5"), std::string::npos) << text;
+  EXPECT_NE(text.find("timoshenko  (6, 6)"), std::string::npos) << text;
+  EXPECT_NE(text.find("per_length  () = 0.0455"), std::string::npos) << text;
+  EXPECT_THROW(fc::inspectFile(tempPath("none.h5")), fc::H5Error);
+}

@@ -1,0 +1,108 @@
+#include "common/inspect.h"
+
+#include <iomanip>
+#include <sstream>
+
+#include "common/h5io.h"
+
+namespace fc {
+
+namespace {
+
+void listDatasets(const H5File& f, const std::string& group, int depth, std::ostringstream& os) {
+  for (const auto& name : f.children(group)) {
+    const std::string path = (group == "/" ? "" : group) + "/" + name;
+    std::string indent(static_cast<std::size_t>(2 * depth + 2), ' ');
+    bool is_group = true;
+    try {
+      const auto dims = f.shape(path);
+      is_group = false;
+      os << indent << name << "  (";
+      for (std::size_t i = 0; i < dims.size(); ++i) os << (i ? ", " : "") << dims[i];
+      os << ")";
+      if (dims.empty() || (dims.size() == 1 && dims[0] == 1)) {
+        try {
+          os << " = " << f.readScalar(path);
+        } catch (const H5Error&) {
+          try {
+            os << " = \"" << f.readString(path) << "\"";
+          } catch (const H5Error&) {
+          }
+        }
+      }
+      os << "\n";
+    } catch (const H5Error&) {
+    }
+    if (is_group) {
+      os << indent << name << "/\n";
+      // Interfaces and bodies can be many: list their names only past a few.
+      const auto kids = f.children(path);
+      if (depth >= 1 && kids.size() > 12) {
+        os << indent << "  (" << kids.size() << " entries)\n";
+        continue;
+      }
+      listDatasets(f, path, depth + 1, os);
+    }
+  }
+}
+
+void summarise(const H5File& f, const std::string& kind, std::ostringstream& os) {
+  os << std::setprecision(6);
+  if (kind == "section" && f.exists("/stiffness/timoshenko")) {
+    const Eigen::MatrixXd K = f.readMatrix("/stiffness/timoshenko");
+    os << "summary: EA = " << K(0, 0) << " N, GA2 = " << K(1, 1) << " N, GA3 = " << K(2, 2)
+       << " N, GJ = " << K(3, 3) << " N m^2, EI2 = " << K(4, 4) << " N m^2, EI3 = " << K(5, 5)
+       << " N m^2";
+    if (f.exists("/mass/per_length")) os << ", mass " << f.readScalar("/mass/per_length") << " kg/m";
+    os << "\n";
+  } else if (kind == "flexbody") {
+    if (f.exists("/inertia/mass")) os << "summary: mass " << f.readScalar("/inertia/mass") << " kg";
+    if (f.exists("/mesh/nodes")) os << ", " << f.shape("/mesh/nodes")[0] << " nodes";
+    if (f.exists("/modes/frequencies_hz")) {
+      const Eigen::VectorXd fr = f.readVector("/modes/frequencies_hz");
+      os << ", " << fr.size() << " modes\n  frequencies [Hz]:";
+      for (Eigen::Index i = 0; i < fr.size(); ++i) os << " " << fr(i);
+    }
+    os << "\n";
+    if (f.exists("/interfaces")) {
+      os << "  interfaces:";
+      for (const auto& n : f.children("/interfaces")) os << " " << n;
+      os << "\n";
+    }
+  } else if (kind == "results" && f.exists("/time")) {
+    const Eigen::VectorXd t = f.readVector("/time");
+    os << "summary: " << t.size() << " outputs";
+    if (t.size() > 0) os << ", t = " << t(0) << " .. " << t(t.size() - 1) << " s";
+    if (f.hasAttribute("/", "status")) os << ", status: " << f.stringAttribute("/", "status");
+    if (f.hasAttribute("/", "cpu_seconds"))
+      os << ", cpu " << f.doubleAttribute("/", "cpu_seconds") << " s";
+    os << "\n";
+    if (f.exists("/bodies")) {
+      os << "  bodies:";
+      for (const auto& n : f.children("/bodies")) os << " " << n;
+      os << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+std::string inspectFile(const std::string& path) {
+  H5File f(path, H5File::Mode::Read);
+  std::ostringstream os;
+  os << path << "\n";
+  std::string kind;
+  for (const char* attr : {"format", "units", "tool", "version", "created", "inputs_sha256",
+                           "status"}) {
+    if (!f.hasAttribute("/", attr)) continue;
+    const std::string v = f.stringAttribute("/", attr);
+    os << "  " << attr << ": " << v << "\n";
+    if (std::string(attr) == "format") kind = v.substr(0, v.find('/'));
+  }
+  summarise(f, kind, os);
+  os << "datasets:\n";
+  listDatasets(f, "/", 0, os);
+  return os.str();
+}
+
+}  // namespace fc
