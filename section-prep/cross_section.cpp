@@ -1,0 +1,402 @@
+#include "section-prep/cross_section.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+#include "section-prep/material_frame.h"
+#include "section-prep/shape_functions.h"
+#include "section-prep/sparse_pattern.h"
+
+namespace fc::section {
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+using MatB = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 27>;
+using MatE = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 27, 27>;
+using Mat4 = Eigen::Matrix<double, Eigen::Dynamic, 4, 0, 27, 4>;
+using Matrix64d = Eigen::Matrix<double, 6, 4>;
+using DenseN4 = Eigen::Matrix<double, Eigen::Dynamic, 4>;
+
+// The discretised energy of Hodges (2006) eq. 4.xx with the warping w = S V:
+//   2U = V'E V + 2 V'Dhe e + e'Dee e + 2 V'Dhl V' + 2 V''Dle e + V''Dll V'
+// (primes on V: d/dx1), e = [gamma11, kappa1, kappa2, kappa3].
+struct Assembled {
+  Eigen::SparseMatrix<double> E, Dhl, Dll;
+  DenseN4 Dhe, Dle, HPsi, Psi;
+  Eigen::Matrix4d Dee = Eigen::Matrix4d::Zero();
+  double area = 0, mu = 0;
+  Eigen::Vector2d first_area = Eigen::Vector2d::Zero(), first_mass = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d second_mass = Eigen::Matrix2d::Zero();
+};
+
+struct ElementNodes {
+  int count = 0;
+  std::array<int, 9> slot{}, node{};
+  std::array<bool, 9> present{};
+};
+
+ElementNodes elementNodes(const SectionElement& e) {
+  ElementNodes en;
+  for (int k = 0; k < 9; ++k) {
+    en.present[k] = e.nodes[k] >= 0;
+    if (en.present[k]) {
+      en.slot[en.count] = k;
+      en.node[en.count] = e.nodes[k];
+      ++en.count;
+    }
+  }
+  return en;
+}
+
+void checkMesh(const SectionMesh& mesh) {
+  const long nn = static_cast<long>(mesh.nodes.size());
+  if (mesh.elements.empty()) throw std::runtime_error("the section mesh has no elements");
+  for (const auto& e : mesh.elements) {
+    const std::string where = "element " + std::to_string(e.user_id) + ": ";
+    for (int n : e.nodes)
+      if (n >= nn) throw std::runtime_error(where + "node index out of range");
+    const int corners = e.shape == ElementShape::Triangle ? 3 : 4;
+    for (int k = 0; k < corners; ++k)
+      if (e.nodes[k] < 0) throw std::runtime_error(where + "a corner node is missing");
+    if (e.shape == ElementShape::Triangle && (e.nodes[3] >= 0 || e.nodes[7] >= 0 || e.nodes[8] >= 0))
+      throw std::runtime_error(where + "a triangle uses node slots 1-3 and 5-7 only");
+    if (e.material < 0 || e.material >= static_cast<int>(mesh.materials.size()))
+      throw std::runtime_error(where + "material index out of range");
+  }
+}
+
+// One connected body, else E has more than the four rigid modes in its kernel.
+void checkConnected(const SparsePattern& p, long n_nodes, const std::vector<char>& used) {
+  std::vector<char> seen(n_nodes, 0);
+  long start = -1, n_used = 0;
+  for (long i = 0; i < n_nodes; ++i)
+    if (used[i]) { ++n_used; if (start < 0) start = i; }
+  std::vector<long> stack{start};
+  seen[start] = 1;
+  long reached = 1;
+  while (!stack.empty()) {
+    const long a = stack.back();
+    stack.pop_back();
+    for (int b : p.neighbours(a))
+      if (!seen[b]) { seen[b] = 1; ++reached; stack.push_back(b); }
+  }
+  if (reached != n_used)
+    throw std::runtime_error("the section is not one connected body (" +
+                             std::to_string(n_used - reached) +
+                             " nodes are not connected to the rest); "
+                             "join the parts or analyse them separately");
+}
+
+Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
+                   const AnalysisOptions& opt) {
+  const long nn = static_cast<long>(mesh.nodes.size());
+  const long ndof = 3 * nn;
+  Assembled A;
+  A.E = pattern.makeMatrix();
+  A.Dhl = pattern.makeMatrix();
+  A.Dll = pattern.makeMatrix();
+  A.Dhe = DenseN4::Zero(ndof, 4);
+  A.Dle = DenseN4::Zero(ndof, 4);
+  A.HPsi = DenseN4::Zero(ndof, 4);
+  A.Psi = DenseN4::Zero(ndof, 4);
+  for (long a = 0; a < nn; ++a) {
+    const double x2 = mesh.nodes[a].x(), x3 = mesh.nodes[a].y();
+    A.Psi(3 * a, 0) = 1;
+    A.Psi(3 * a + 1, 1) = 1;
+    A.Psi(3 * a + 2, 2) = 1;
+    A.Psi(3 * a + 1, 3) = -x3;
+    A.Psi(3 * a + 2, 3) = x2;
+  }
+
+  std::vector<Matrix6d> beam_C(mesh.elements.size());
+  const long n_el = static_cast<long>(mesh.elements.size());
+  const long report_every = std::max<long>(1, n_el / 20);
+  for (long ie = 0; ie < n_el; ++ie) {
+    if (opt.progress && ie % report_every == 0) opt.progress("assembly", double(ie) / n_el);
+    const SectionElement& el = mesh.elements[ie];
+    const SectionMaterial& mat = mesh.materials[el.material];
+    const ElementNodes en = elementNodes(el);
+    const int ne = en.count, nd = 3 * ne;
+    Eigen::Matrix<double, 9, 2> X;
+    for (int a = 0; a < ne; ++a) X.row(a) = mesh.nodes[en.node[a]].transpose();
+
+    Matrix6d D = Matrix6d::Zero();
+    if (!el.theta1_nodal)
+      D = rotateVoigtStiffness(mat.C, materialAxes(el.theta1_deg[0] * kDegree, el.theta3_deg * kDegree));
+
+    MatE Ee = MatE::Zero(nd, nd), Hl = MatE::Zero(nd, nd), Ll = MatE::Zero(nd, nd);
+    Mat4 He = Mat4::Zero(nd, 4), Le = Mat4::Zero(nd, 4);
+    MatB Bh(6, nd), L(6, nd);
+    Matrix64d G = Matrix64d::Zero();
+    for (const auto& q : quadratureRule(el.shape, ne)) {
+      const ShapeValues sv = shapeFunctions(el.shape, en.present, q.r, q.s);
+      double J00 = 0, J01 = 0, J10 = 0, J11 = 0, x2 = 0, x3 = 0, th1 = 0;
+      for (int a = 0; a < ne; ++a) {
+        const int k = en.slot[a];
+        J00 += sv.dNdr[k] * X(a, 0);
+        J01 += sv.dNdr[k] * X(a, 1);
+        J10 += sv.dNds[k] * X(a, 0);
+        J11 += sv.dNds[k] * X(a, 1);
+        x2 += sv.N[k] * X(a, 0);
+        x3 += sv.N[k] * X(a, 1);
+        th1 += sv.N[k] * el.theta1_deg[k];
+      }
+      const double det = J00 * J11 - J01 * J10;
+      if (!(std::abs(det) > 0) || !std::isfinite(det))
+        throw std::runtime_error("element " + std::to_string(el.user_id) +
+                                 " is degenerate (zero Jacobian): check its node order and coordinates");
+      const double w = std::abs(det) * q.w;
+      if (el.theta1_nodal)
+        D = rotateVoigtStiffness(mat.C, materialAxes(th1 * kDegree, el.theta3_deg * kDegree));
+
+      Bh.setZero();
+      L.setZero();
+      for (int a = 0; a < ne; ++a) {
+        const int k = en.slot[a];
+        const double N = sv.N[k];
+        const double N2 = (J11 * sv.dNdr[k] - J01 * sv.dNds[k]) / det;
+        const double N3 = (-J10 * sv.dNdr[k] + J00 * sv.dNds[k]) / det;
+        // Voigt rows [11, 22, 33, 23, 13, 12]; columns w1, w2, w3 of node a.
+        Bh(4, 3 * a) = N3;
+        Bh(5, 3 * a) = N2;
+        Bh(1, 3 * a + 1) = N2;
+        Bh(3, 3 * a + 1) = N3;
+        Bh(2, 3 * a + 2) = N3;
+        Bh(3, 3 * a + 2) = N2;
+        L(0, 3 * a) = N;
+        L(5, 3 * a + 1) = N;
+        L(4, 3 * a + 2) = N;
+        // H Psi: the warping constraints <w, rigid mode>.
+        const long r0 = 3L * en.node[a];
+        A.HPsi(r0, 0) += N * w;
+        A.HPsi(r0 + 1, 1) += N * w;
+        A.HPsi(r0 + 2, 2) += N * w;
+        A.HPsi(r0 + 1, 3) -= N * x3 * w;
+        A.HPsi(r0 + 2, 3) += N * x2 * w;
+      }
+      // Gamma_epsilon: Gamma11 = g11 + x3 k2 - x2 k3, 2Gamma13 = x2 k1, 2Gamma12 = -x3 k1.
+      G(0, 0) = 1;
+      G(0, 2) = x3;
+      G(0, 3) = -x2;
+      G(4, 1) = x2;
+      G(5, 1) = -x3;
+      const MatB DB = (w * D) * Bh;
+      const MatB DL = (w * D) * L;
+      const Matrix64d DG = (w * D) * G;
+      Ee.noalias() += Bh.transpose() * DB;
+      Hl.noalias() += Bh.transpose() * DL;
+      Ll.noalias() += L.transpose() * DL;
+      He.noalias() += Bh.transpose() * DG;
+      Le.noalias() += L.transpose() * DG;
+      A.Dee.noalias() += G.transpose() * DG;
+
+      const double rw = mat.rho * w;
+      A.area += w;
+      A.first_area += w * Eigen::Vector2d(x2, x3);
+      A.mu += rw;
+      A.first_mass += rw * Eigen::Vector2d(x2, x3);
+      A.second_mass(0, 0) += rw * x2 * x2;
+      A.second_mass(1, 1) += rw * x3 * x3;
+      A.second_mass(0, 1) += rw * x2 * x3;
+    }
+    A.second_mass(1, 0) = A.second_mass(0, 1);
+
+    const auto slots = pattern.elementSlots(en.node.data(), ne);
+    double* pE = A.E.valuePtr();
+    double* pH = A.Dhl.valuePtr();
+    double* pL = A.Dll.valuePtr();
+    for (int a = 0; a < ne; ++a)
+      for (int b = 0; b < ne; ++b)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const long pos = slots(a, b) + i + pattern.blockStride(en.node[b]) * j;
+            pE[pos] += Ee(3 * a + i, 3 * b + j);
+            pH[pos] += Hl(3 * a + i, 3 * b + j);
+            pL[pos] += Ll(3 * a + i, 3 * b + j);
+          }
+    for (int a = 0; a < ne; ++a) {
+      const long r0 = 3L * en.node[a];
+      A.Dhe.middleRows(r0, 3) += He.middleRows(3 * a, 3);
+      A.Dle.middleRows(r0, 3) += Le.middleRows(3 * a, 3);
+    }
+  }
+  A.second_mass(1, 0) = A.second_mass(0, 1);
+  return A;
+}
+
+// Solves E V = b for V orthogonal (in H) to the rigid warping modes Psi. The
+// right-hand side is first freed of its Psi component, which is what the
+// Lagrange multipliers of the constraints absorb; the kernel is removed by
+// pinning four degrees of freedom, and the pinned solution is then projected.
+class ConstrainedSolver {
+ public:
+  ConstrainedSolver(const Assembled& A, const std::vector<Eigen::Vector2d>& nodes,
+                    const std::vector<char>& used)
+      : A_(A) {
+    M4inv_ = (A.Psi.transpose() * A.HPsi).inverse();
+    const long nn = static_cast<long>(nodes.size());
+    long a = 0;
+    while (!used[a]) ++a;
+    long b = a;
+    double best = -1;
+    for (long i = 0; i < nn; ++i) {
+      if (!used[i]) continue;
+      const double d = (nodes[i] - nodes[a]).squaredNorm();
+      if (d > best) { best = d; b = i; }
+    }
+    const Eigen::Vector2d d = nodes[b] - nodes[a];
+    // A rotation about x1 moves w3 at b by theta * dx2 and w2 by -theta * dx3.
+    pinned_ = {3 * a, 3 * a + 1, 3 * a + 2,
+               std::abs(d.x()) >= std::abs(d.y()) ? 3 * b + 2 : 3 * b + 1};
+    std::vector<char> is_pinned(3 * nn, 0);
+    for (long p : pinned_) is_pinned[p] = 1;
+    // Unused nodes (in a file but in no element) are pinned too.
+    for (long i = 0; i < nn; ++i)
+      if (!used[i]) for (int k = 0; k < 3; ++k) is_pinned[3 * i + k] = 1;
+    mask_ = is_pinned;
+    Eigen::SparseMatrix<double> K = A.E;
+    for (long col = 0; col < K.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
+        if (is_pinned[it.row()] || is_pinned[it.col()])
+          it.valueRef() = (it.row() == it.col()) ? 1.0 : 0.0;
+    solver_.compute(K);
+    if (solver_.info() != Eigen::Success)
+      throw std::runtime_error("the warping stiffness matrix could not be factorised: "
+                               "check for elements with zero stiffness");
+  }
+
+  DenseN4 solve(DenseN4 rhs) const {
+    rhs -= A_.HPsi * (M4inv_ * (A_.Psi.transpose() * rhs));
+    for (long i = 0; i < rhs.rows(); ++i)
+      if (mask_[i]) rhs.row(i).setZero();
+    DenseN4 V = solver_.solve(rhs);
+    V -= A_.Psi * (M4inv_ * (A_.HPsi.transpose() * V));
+    return V;
+  }
+
+ private:
+  const Assembled& A_;
+  Eigen::Matrix4d M4inv_;
+  std::vector<long> pinned_;
+  std::vector<char> mask_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+};
+
+}  // namespace
+
+Matrix6d sectionMassMatrix(double mu, const Eigen::Vector2d& fm, const Eigen::Matrix2d& sm) {
+  // Kinetic energy of the rigid section moving with the reference line:
+  // [v; omega] with v about the origin (Hodges 2006, eq. 4.xx, VABS order).
+  Matrix6d M = Matrix6d::Zero();
+  M(0, 0) = M(1, 1) = M(2, 2) = mu;
+  M(0, 4) = M(4, 0) = fm.y();
+  M(0, 5) = M(5, 0) = -fm.x();
+  M(1, 3) = M(3, 1) = -fm.y();
+  M(2, 3) = M(3, 2) = fm.x();
+  M(3, 3) = sm(0, 0) + sm(1, 1);
+  M(4, 4) = sm(1, 1);
+  M(5, 5) = sm(0, 0);
+  M(4, 5) = M(5, 4) = -sm(0, 1);
+  return M;
+}
+
+Eigen::Vector2d shearCenterFromTimoshenko(const Matrix6d& K) {
+  // A transverse force through the shear centre causes no twist: with the
+  // compliance S, a force F3 at x2 gives M1 = x2 F3, so kappa1 = S(3,2) F3 +
+  // S(3,3) x2 F3 = 0; likewise for F2 (M1 = -x3 F2).
+  const Matrix6d S = K.inverse();
+  return {-S(3, 2) / S(3, 3), S(3, 1) / S(3, 3)};
+}
+
+Eigen::Vector2d tensionCenterFromClassical(const Eigen::Matrix4d& K) {
+  // An axial force through the tension centre causes no bending: F1 at
+  // (x2, x3) adds M2 = x3 F1, M3 = -x2 F1; both curvatures vanish.
+  const Eigen::Matrix4d S = K.inverse();
+  Eigen::Matrix2d a;
+  a << -S(2, 3), S(2, 2), -S(3, 3), S(3, 2);
+  const Eigen::Vector2d rhs(-S(2, 0), -S(3, 0));
+  return a.lu().solve(rhs);
+}
+
+SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions& opt) {
+  checkMesh(mesh);
+  const long nn = static_cast<long>(mesh.nodes.size());
+  std::vector<std::vector<int>> element_nodes;
+  element_nodes.reserve(mesh.elements.size());
+  std::vector<char> used(nn, 0);
+  for (const auto& e : mesh.elements) {
+    std::vector<int> v;
+    for (int n : e.nodes)
+      if (n >= 0) { v.push_back(n); used[n] = 1; }
+    element_nodes.push_back(std::move(v));
+  }
+  const SparsePattern pattern(nn, element_nodes);
+  checkConnected(pattern, nn, used);
+
+  const Assembled A = assemble(mesh, pattern, opt);
+  SectionProperties P;
+  P.n_nodes = std::count(used.begin(), used.end(), 1);
+  P.n_elements = static_cast<long>(mesh.elements.size());
+  P.n_dof = 3 * P.n_nodes;
+  P.area = A.area;
+  P.mass_per_length = A.mu;
+  P.geometric_center = A.first_area / A.area;
+  P.mass_center = A.mu > 0 ? Eigen::Vector2d(A.first_mass / A.mu) : P.geometric_center;
+  P.mass = sectionMassMatrix(A.mu, A.first_mass, A.second_mass);
+
+  if (opt.progress) opt.progress("factorisation", 0.0);
+  const ConstrainedSolver solver(A, mesh.nodes, used);
+  if (opt.progress) opt.progress("warping", 0.5);
+
+  // Zeroth order (classical): E V0 = -Dhe, Hodges (2006) eq. 4.xx.
+  const DenseN4 V0 = solver.solve(-A.Dhe);
+  Eigen::Matrix4d K = A.Dee + V0.transpose() * A.Dhe;
+  K = 0.5 * (K + K.transpose()).eval();
+  P.classical = K;
+  P.tension_center = tensionCenterFromClassical(K);
+
+  if (opt.timoshenko) {
+    // First order in the slenderness (Yu et al. 2002, sec. 3): V1 = V1hat e',
+    //   E V1hat = (Dhl^T - Dhl) V0 + Dle,
+    // energy 2U = e'A e + 2 e'B e' + e''C e' with
+    //   B = (Dhl^T V0 + Dle)^T V0,  C = V0^T Dll V0 + V1^T (Dhl^T V0 + Dhl V0 + Dle).
+    const DenseN4 T1 = A.Dhl.transpose() * V0 + A.Dle;
+    const DenseN4 T2 = A.Dhl * V0;
+    const DenseN4 V1 = solver.solve(T1 - T2);
+    const Eigen::Matrix4d B = T1.transpose() * V0;
+    Eigen::Matrix4d C = V0.transpose() * (A.Dll * V0) + V1.transpose() * (T2 + T1);
+    C = 0.5 * (C + C.transpose()).eval();
+    // Equivalence with the Timoshenko energy through the equilibrium equations
+    // of the unloaded beam, e' = K^-1 P F (Yu et al. 2002, eqs. 40-52).
+    Eigen::Matrix<double, 4, 2> Pm;
+    Pm << 0, 0, 0, 0, 0, -1, 1, 0;
+    const Eigen::Matrix4d Kinv = K.inverse();
+    const Eigen::Matrix<double, 4, 2> Q = Kinv * Pm;
+    const Eigen::Matrix2d Ginv = Q.transpose() * (C - B.transpose() * Kinv * B) * Q;
+    const Eigen::Matrix2d Gs = Ginv.inverse();
+    const Eigen::Matrix<double, 4, 2> Y = B.transpose() * Q * Gs;
+    const Eigen::Matrix4d X = K + Y * Ginv * Y.transpose();
+    // Reorder [e (4), gamma (2)] -> VABS [g11, 2g12, 2g13, k1, k2, k3].
+    const int map_e[4] = {0, 3, 4, 5}, map_g[2] = {1, 2};
+    Matrix6d T = Matrix6d::Zero();
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) T(map_e[i], map_e[j]) = X(i, j);
+      for (int j = 0; j < 2; ++j) T(map_e[i], map_g[j]) = T(map_g[j], map_e[i]) = Y(i, j);
+    }
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) T(map_g[i], map_g[j]) = Gs(i, j);
+    P.timoshenko = 0.5 * (T + T.transpose());
+    P.has_timoshenko = true;
+    P.shear_center = shearCenterFromTimoshenko(P.timoshenko);
+  }
+  if (opt.progress) opt.progress("done", 1.0);
+  return P;
+}
+
+}  // namespace fc::section

@@ -1,0 +1,49 @@
+#pragma once
+// Cross-sectional stiffness and inertia of a prismatic beam by the
+// variational-asymptotic method, discretised with 2-D finite elements as in
+// VABS: Cesnik & Hodges (J. Am. Helicopter Soc. 42, 1997) for the classical
+// model, Yu, Hodges, Volovoi & Cesnik (IJSS 39, 2002) for the generalized
+// Timoshenko model; notation of Hodges, Nonlinear Composite Beam Theory (2006),
+// ch. 4. Straight, untwisted beams.
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+
+#include "section-prep/section_mesh.h"
+
+namespace fc::section {
+
+struct SectionProperties {
+  // Order [extension, twist, bending about x2, bending about x3].
+  Eigen::Matrix4d classical = Eigen::Matrix4d::Zero();
+  // Order [extension, shear x2, shear x3, twist, bending x2, bending x3] (VABS).
+  Matrix6d timoshenko = Matrix6d::Zero();
+  Matrix6d mass = Matrix6d::Zero();  // same order, about the origin
+  double mass_per_length = 0.0;
+  double area = 0.0;
+  Eigen::Vector2d geometric_center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d mass_center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d tension_center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d shear_center = Eigen::Vector2d::Zero();
+  bool has_timoshenko = false;
+  long n_nodes = 0, n_elements = 0, n_dof = 0;
+};
+
+struct AnalysisOptions {
+  bool timoshenko = true;
+  // Called with a phase name and the fraction done (for fc::Progress).
+  std::function<void(const std::string&, double)> progress;
+};
+
+// Throws std::runtime_error naming the element for degenerate geometry, and
+// when the section is not one connected body (the warping problem is then
+// singular beyond the four rigid modes).
+SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions& options = {});
+
+// Derived quantities, exposed for tests.
+Matrix6d sectionMassMatrix(double mu, const Eigen::Vector2d& first_moment,
+                           const Eigen::Matrix2d& second_moment);
+Eigen::Vector2d shearCenterFromTimoshenko(const Matrix6d& K);
+Eigen::Vector2d tensionCenterFromClassical(const Eigen::Matrix4d& K);
+
+}  // namespace fc::section
