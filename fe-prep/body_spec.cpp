@@ -1,0 +1,237 @@
+#include "fe-prep/body_spec.h"
+
+#include <set>
+
+#include "common/files.h"
+#include "common/h5io.h"
+#include "common/materials.h"
+
+namespace fc::feprep {
+namespace {
+
+const char* const kEdges[] = {"edge_xmin", "edge_xmax", "edge_ymin", "edge_ymax"};
+const char* const kEnds[] = {"end_min", "end_max"};
+
+// The material of an inline beam section: closed forms need an isotropic solid.
+const Material& isotropicMaterial(const MaterialLibrary& lib, const InputNode& node) {
+  const Material& m = lookupMaterial(lib, node);
+  if (m.kind != Material::Kind::Isotropic)
+    node.fail("inline beam sections need an isotropic material; '" + m.name +
+              "' is not (give a section-prep file instead: section: {file: SECTION.h5})");
+  return m;
+}
+
+ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const LaminateLibrary& laminates,
+                     BodySpec& body) {
+  s.allowKeys({"rectangle", "laminate", "material", "thickness", "element", "mesh", "shear_correction"});
+  ShellSpec shell;
+  const double kappa = s.number("shear_correction", 5.0 / 6.0);
+  if (s.has("laminate")) {
+    if (s.has("material") || s.has("thickness"))
+      s["laminate"].fail("give either laminate: NAME or material: and thickness:, not both");
+    const InputNode ln = s["laminate"];
+    const std::string name = ln.asString();
+    auto it = laminates.find(name);
+    if (it == laminates.end()) {
+      std::vector<std::string> names;
+      for (const auto& kv : laminates) names.push_back(kv.first);
+      const std::string near = closestMatch(name, names);
+      ln.fail("unknown laminate '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+              "; expected a name from the laminates: block");
+    }
+    shell.laminate = laminateStiffness(it->second, materials, kappa);
+    shell.laminate_name = name;
+  } else if (s.has("material")) {
+    const Material& m = lookupMaterial(materials, s["material"]);
+    const double t = s["thickness"].asPositive();
+    shell.laminate = laminateStiffness(homogeneousLaminate(m.name, t), materials, kappa);
+    shell.laminate_name = m.name;
+  } else {
+    s.fail("missing the shell's section: expected laminate: NAME, or material: NAME with thickness: T");
+  }
+
+  const std::string el = s.string("element", "dst");
+  if (el == "dst") shell.kind = fe::ShellKind::DST;
+  else if (el == "dkt") shell.kind = fe::ShellKind::DKT;
+  else s["element"].fail("unknown element '" + el + "', expected dst or dkt");
+
+  const InputNode mesh = s["mesh"];
+  shell.mesh_node = mesh;
+  mesh.allowKeys({"triangles", "size", "file"});
+  if (mesh.has("triangles") && mesh.has("size"))
+    mesh.fail("give either triangles: N or size: H, not both");
+  if (mesh.has("triangles")) {
+    const long n = mesh["triangles"].asInt();
+    if (n < 2) mesh["triangles"].fail("expected at least 2 triangles, got " + std::to_string(n));
+    shell.triangles = n;
+  }
+  if (mesh.has("size")) shell.size = mesh["size"].asPositive();
+
+  if (mesh.has("file")) {
+    if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
+    shell.rectangle = false;
+    shell.geo_file = resolveRelativeTo(s.file(), mesh["file"].asString());
+    if (readTextFile(shell.geo_file).empty()) mesh["file"].fail("mesh file '" + shell.geo_file + "' is empty");
+    body.input_files.push_back(shell.geo_file);
+    if (shell.triangles > 0) mesh["triangles"].fail("a triangle count applies to rectangles; use size: with a mesh file");
+  } else {
+    const InputNode r = s["rectangle"];
+    r.allowKeys({"length", "width"});
+    shell.length = r["length"].asPositive();
+    shell.width = r["width"].asPositive();
+    if (shell.triangles == 0 && shell.size == 0.0)
+      mesh.fail("expected triangles: N (approximate count) or size: H (element size)");
+  }
+  return shell;
+}
+
+BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpec& body) {
+  b.allowKeys({"length", "section", "elements"});
+  BeamSpec beam;
+  beam.length = b["length"].asPositive();
+  if (b.has("elements")) {
+    beam.elements = b["elements"].asInt();
+    if (beam.elements < 1) b["elements"].fail("expected a positive number of elements");
+  }
+  const InputNode sec = b["section"];
+  if (sec.has("file")) {
+    sec.allowKeys({"file"});
+    const std::string path = resolveRelativeTo(sec.file(), sec["file"].asString());
+    try {
+      H5File f(path, H5File::Mode::Read);
+      f.checkFormat("section", 1);
+      beam.Ks = f.readMatrix("/stiffness/timoshenko");
+      beam.Ms = f.readMatrix("/mass/matrix");
+    } catch (const std::exception& e) {
+      sec["file"].fail(std::string("cannot use section file: ") + e.what() +
+                       "; expected a section-prep output (format section/1)");
+    }
+    beam.section_source = path;
+    body.input_files.push_back(path);
+    return beam;
+  }
+  const InputNode shape = sec["shape"];
+  const std::string kind = shape.asString();
+  SectionMatrices s;
+  if (kind == "solid_circle") {
+    sec.allowKeys({"shape", "diameter", "material"});
+    const Material& m = isotropicMaterial(materials, sec["material"]);
+    s = solidCircleSection(sec["diameter"].asPositive(), m.E1, m.nu12, m.rho);
+  } else if (kind == "tube") {
+    sec.allowKeys({"shape", "outer_diameter", "wall", "material"});
+    const InputNode wall = sec["wall"];
+    wall.allowKeys({"thickness", "material"});
+    const InputNode mat = wall.has("material") ? wall["material"] : sec["material"];
+    const Material& m = isotropicMaterial(materials, mat);
+    const double D = sec["outer_diameter"].asPositive(), t = wall["thickness"].asPositive();
+    if (2 * t >= D) wall["thickness"].fail("wall thickness must be less than half the outer diameter");
+    s = tubeSection(D, t, m.E1, m.nu12, m.rho);
+  } else if (kind == "rectangle") {
+    sec.allowKeys({"shape", "width", "height", "material"});
+    const Material& m = isotropicMaterial(materials, sec["material"]);
+    s = rectangleSection(sec["width"].asPositive(), sec["height"].asPositive(), m.E1, m.nu12, m.rho);
+  } else {
+    shape.fail("unknown inline section shape '" + kind +
+               "', expected solid_circle, tube or rectangle (or section: {file: SECTION.h5} from section-prep)");
+  }
+  beam.Ks = s.K;
+  beam.Ms = s.M;
+  beam.section_source = kind;
+  return beam;
+}
+
+}  // namespace
+
+BodySpec parseBodySpec(const InputNode& root) {
+  root.allowKeys({"materials", "laminates", "body"});
+  BodySpec spec;
+  MaterialLibrary materials;
+  LaminateLibrary laminates;
+  auto includeFile = [&](const char* block) {
+    if (root.has(block) && root[block].has("include"))
+      spec.input_files.push_back(resolveRelativeTo(root.file(), root[block]["include"].asString()));
+  };
+  includeFile("materials");
+  includeFile("laminates");
+  if (root.has("materials")) materials = readMaterials(root["materials"]);
+  if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
+
+  const InputNode b = root["body"];
+  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass"});
+  spec.name = b.string("name", "body");
+  if (b.has("shell") == b.has("beam")) b.fail("expected exactly one of shell: or beam:");
+  if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
+  else spec.beam = parseBeam(b["beam"], materials, spec);
+
+  std::set<std::string> names;
+  if (b.has("interfaces")) {
+    const InputNode in = b["interfaces"];
+    if (!in.isMap()) in.fail("expected a map NAME: [x, y, z]");
+    for (const auto& key : in.keys()) {
+      const InputNode p = in[key];
+      InterfaceSpec i{key, p.asVector(3), p};
+      if (spec.beam && (std::abs(i.position.x()) > spec.beam->length / 2 * (1 + 1e-9)))
+        p.fail("the point's projection on the beam axis, x = " + std::to_string(i.position.x()) +
+               ", is outside the beam [-length/2, length/2]");
+      if (spec.shell && spec.shell->rectangle &&
+          (std::abs(i.position.x()) > spec.shell->length / 2 * (1 + 1e-9) ||
+           std::abs(i.position.y()) > spec.shell->width / 2 * (1 + 1e-9)))
+        p.fail("the point's projection on the panel, (x, y), is outside the rectangle centred on the origin");
+      names.insert(key);
+      spec.interfaces.push_back(i);
+    }
+  }
+
+  // reference: free | {clamp: [...], pin: [...]}
+  if (b.has("reference")) {
+    const InputNode r = b["reference"];
+    if (r.isScalar()) {
+      if (r.asString() != "free") r.fail("expected free, or a map {clamp: [SETS], pin: [SETS]}");
+    } else {
+      r.allowKeys({"clamp", "pin", "free"});
+      std::vector<std::string> known(names.begin(), names.end());
+      if (spec.shell && spec.shell->rectangle) known.insert(known.end(), std::begin(kEdges), std::end(kEdges));
+      if (spec.beam) known.insert(known.end(), std::begin(kEnds), std::end(kEnds));
+      for (const char* kind : {"clamp", "pin"}) {
+        if (!r.has(kind)) continue;
+        const InputNode list = r[kind];
+        for (std::size_t i = 0; i < list.size(); ++i) {
+          const InputNode item = list.at(i);
+          const std::string set = item.asString();
+          // Geo files define their own sets (physical groups); checked after meshing.
+          const bool open_set = spec.shell && !spec.shell->rectangle;
+          if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
+            const std::string near = closestMatch(set, known);
+            item.fail("unknown set '" + set + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                      "; expected an interface name" +
+                      (spec.beam ? ", end_min or end_max" : ", edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
+          }
+          spec.reference.push_back({set, std::string(kind) == "clamp", item});
+        }
+      }
+    }
+  }
+
+  if (b.has("modes") && b.has("max_frequency_hz")) b.fail("give either modes: N or max_frequency_hz: F, not both");
+  if (b.has("modes")) {
+    spec.modes = b["modes"].asInt();
+    if (spec.modes < 1) b["modes"].fail("expected a positive number of modes");
+  } else if (b.has("max_frequency_hz")) {
+    spec.max_frequency_hz = b["max_frequency_hz"].asPositive();
+  } else {
+    b.fail("missing the mode selection: expected modes: N or max_frequency_hz: F");
+  }
+  const std::string mass = b.string("mass", "lumped");
+  if (mass == "lumped") spec.lumped = true;
+  else if (mass == "consistent") spec.lumped = false;
+  else b["mass"].fail("unknown mass '" + mass + "', expected lumped or consistent");
+  return spec;
+}
+
+BodySpec readBodySpec(const std::string& path) {
+  BodySpec spec = parseBodySpec(InputNode::loadFile(path));
+  spec.input_files.insert(spec.input_files.begin(), path);
+  return spec;
+}
+
+}  // namespace fc::feprep

@@ -1,0 +1,75 @@
+#pragma once
+// The body YAML of contracts.md (fe-prep section) as checked data. Every
+// value keeps the InputNode it came from so that problems found later (a set
+// name the mesh does not have, a point outside the panel) still name the
+// file, line and key.
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/input.h"
+#include "common/laminate.h"
+#include "fe-prep/elements/shell_triangle.h"
+
+namespace fc::feprep {
+
+struct ShellSpec {
+  bool rectangle = true;
+  double length = 0.0, width = 0.0;  // rectangle
+  std::string geo_file;              // mesh: {file: ...} (resolved path)
+  LaminateStiffness laminate;
+  std::string laminate_name;
+  fe::ShellKind kind = fe::ShellKind::DST;
+  long triangles = 0;  // mesh: {triangles: N}
+  double size = 0.0;   // mesh: {size: h}
+  InputNode mesh_node;
+};
+
+struct BeamSpec {
+  double length = 0.0;
+  long elements = 2;
+  Matrix6d Ks = Matrix6d::Zero();  // section stiffness, VABS order
+  Matrix6d Ms = Matrix6d::Zero();  // section mass per length
+  std::string section_source;      // file path or inline shape name
+};
+
+struct InterfaceSpec {
+  std::string name;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  InputNode node;
+};
+
+struct ReferenceEntry {
+  std::string set;
+  bool clamp = false;
+  InputNode node;
+};
+
+struct BodySpec {
+  std::string name;
+  std::optional<ShellSpec> shell;
+  std::optional<BeamSpec> beam;
+  std::vector<InterfaceSpec> interfaces;
+  std::vector<ReferenceEntry> reference;  // empty: free
+  long modes = 0;
+  double max_frequency_hz = 0.0;
+  bool lumped = true;
+  std::vector<std::string> input_files;  // the YAML and every file it uses (for the SHA-256)
+};
+
+// Reads and checks a body YAML file; InputError on any problem.
+BodySpec readBodySpec(const std::string& path);
+BodySpec parseBodySpec(const InputNode& root);
+
+// Closed-form isotropic sections for inline beam input (VABS order):
+// solid_circle {diameter}, tube {outer_diameter, wall: {thickness}}, rectangle {width, height}.
+// Shear correction factors of Cowper (J. Appl. Mech. 33, 1966).
+struct SectionMatrices {
+  Matrix6d K, M;
+};
+SectionMatrices solidCircleSection(double diameter, double E, double nu, double rho);
+SectionMatrices tubeSection(double outer_diameter, double wall, double E, double nu, double rho);
+SectionMatrices rectangleSection(double width, double height, double E, double nu, double rho);
+
+}  // namespace fc::feprep

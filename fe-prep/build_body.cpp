@@ -1,0 +1,281 @@
+#include "fe-prep/build_body.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/progress.h"
+#include "fe-prep/assembly.h"
+#include "fe-prep/beam_mesher.h"
+#include "fe-prep/body_inertia.h"
+#include "fe-prep/constraints.h"
+#include "fe-prep/elements/beam_element.h"
+#include "fe-prep/elements/shell_triangle.h"
+#include "fe-prep/modal_solver.h"
+#include "fe-prep/panel_mesher.h"
+
+namespace fc::feprep {
+namespace {
+
+double peakRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+// Beams lie along body x; their section x2 axis is body y (contracts.md).
+const Eigen::Vector3d kSectionX2(0.0, 1.0, 0.0);
+
+void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  long sizes[3] = {mesh.nodeCount(), static_cast<long>(mesh.triangles.size()), static_cast<long>(mesh.beams.size())};
+  MPI_Bcast(sizes, 3, MPI_LONG, 0, comm);
+  if (rank != 0) {
+    mesh.nodes.resize(sizes[0], 3);
+    mesh.triangles.resize(static_cast<std::size_t>(sizes[1]));
+    mesh.beams.resize(static_cast<std::size_t>(sizes[2]));
+  }
+  MPI_Bcast(mesh.nodes.data(), static_cast<int>(mesh.nodes.size()), MPI_DOUBLE, 0, comm);
+  MPI_Bcast(mesh.triangles.data(), static_cast<int>(3 * sizes[1]), MPI_LONG, 0, comm);
+  MPI_Bcast(mesh.beams.data(), static_cast<int>(2 * sizes[2]), MPI_LONG, 0, comm);
+  // Sets as "name\n" strings plus their index lists.
+  std::string names;
+  std::vector<long> counts, members;
+  for (const auto& [name, list] : mesh.sets) {
+    names += name + "\n";
+    counts.push_back(static_cast<long>(list.size()));
+    members.insert(members.end(), list.begin(), list.end());
+  }
+  long lens[3] = {static_cast<long>(names.size()), static_cast<long>(counts.size()), static_cast<long>(members.size())};
+  MPI_Bcast(lens, 3, MPI_LONG, 0, comm);
+  names.resize(static_cast<std::size_t>(lens[0]));
+  counts.resize(static_cast<std::size_t>(lens[1]));
+  members.resize(static_cast<std::size_t>(lens[2]));
+  MPI_Bcast(names.data(), static_cast<int>(lens[0]), MPI_CHAR, 0, comm);
+  MPI_Bcast(counts.data(), static_cast<int>(lens[1]), MPI_LONG, 0, comm);
+  MPI_Bcast(members.data(), static_cast<int>(lens[2]), MPI_LONG, 0, comm);
+  if (rank != 0) {
+    mesh.sets.clear();
+    std::istringstream in(names);
+    std::string name;
+    std::size_t k = 0, at = 0;
+    while (std::getline(in, name)) {
+      const long c = counts[k++];
+      mesh.sets[name].assign(members.begin() + static_cast<long>(at), members.begin() + static_cast<long>(at) + c);
+      at += static_cast<std::size_t>(c);
+    }
+  }
+}
+
+class Stopwatch {
+ public:
+  void start() { t0_ = std::chrono::steady_clock::now(); }
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+
+ private:
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
+
+Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  Mesh mesh;
+  std::string error;
+  if (rank == 0) {
+    try {
+      if (spec.beam) {
+        std::vector<double> xs;
+        for (const auto& i : spec.interfaces) xs.push_back(i.position.x());
+        mesh = meshBeam(spec.beam->length, spec.beam->elements, xs);
+      } else if (spec.shell->rectangle) {
+        PanelMeshRequest r;
+        r.length = spec.shell->length;
+        r.width = spec.shell->width;
+        r.triangles = spec.shell->triangles;
+        r.size = spec.shell->size;
+        for (const auto& i : spec.interfaces) r.forced_points.emplace_back(i.position.x(), i.position.y());
+        mesh = meshRectangle(r);
+      } else {
+        std::vector<Eigen::Vector3d> pts;
+        for (const auto& i : spec.interfaces) pts.push_back(i.position);
+        mesh = meshGeoFile(spec.shell->geo_file, spec.shell->size, pts, true);
+      }
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  long len = static_cast<long>(error.size());
+  MPI_Bcast(&len, 1, MPI_LONG, 0, comm);
+  error.resize(static_cast<std::size_t>(len));
+  MPI_Bcast(error.data(), static_cast<int>(len), MPI_CHAR, 0, comm);
+  if (!error.empty()) {
+    if (spec.shell) spec.shell->mesh_node.fail("meshing failed: " + error);
+    throw std::runtime_error("meshing failed: " + error);
+  }
+  broadcastMesh(comm, mesh);
+  return mesh;
+}
+
+Eigen::MatrixXd interfaceShapes(const Eigen::MatrixXd& node_shapes, long node, const Eigen::Vector3d& d) {
+  const long nm = node_shapes.cols();
+  Eigen::MatrixXd s(nm, 6);
+  for (long j = 0; j < nm; ++j) {
+    const Eigen::Vector3d u = node_shapes.block<3, 1>(6 * node, j);
+    const Eigen::Vector3d th = node_shapes.block<3, 1>(6 * node + 3, j);
+    s.block<1, 3>(j, 0) = (u + th.cross(d)).transpose();
+    s.block<1, 3>(j, 3) = th.transpose();
+  }
+  return s;
+}
+
+BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  const bool quiet = options.quiet || rank != 0;
+  BuildResult res;
+  Stopwatch sw;
+
+  // --- meshing
+  sw.start();
+  Progress pmesh("meshing", 1.0, quiet);
+  pmesh.update(0.0);
+  const Mesh mesh = meshBody(comm, spec, quiet);
+  std::ostringstream mdesc;
+  mdesc << "(" << mesh.nodeCount() << " nodes, "
+        << (spec.shell ? mesh.triangles.size() : mesh.beams.size()) << (spec.shell ? " triangles)" : " beam elements)");
+  pmesh.finish(mdesc.str());
+  res.stages.push_back({"meshing", sw.seconds(), peakRssMb()});
+
+  // --- interfaces and reference conditions
+  sw.start();
+  FlexBody& body = res.body;
+  body.name = spec.name;
+  body.nodes = mesh.nodes;
+  for (const auto& i : spec.interfaces) {
+    Eigen::Vector3d projection = i.position;
+    if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
+    else if (spec.shell->rectangle) projection.z() = 0.0;
+    double dist;
+    const long node = mesh.nearestNode(projection, &dist);
+    FlexInterface fi;
+    fi.name = i.name;
+    fi.node = node;
+    fi.position = i.position;
+    body.interfaces.push_back(fi);
+  }
+  std::vector<PointConstraint> constraints;
+  for (const auto& r : spec.reference) {
+    auto it = std::find_if(body.interfaces.begin(), body.interfaces.end(),
+                           [&](const FlexInterface& f) { return f.name == r.set; });
+    if (it != body.interfaces.end()) {
+      constraints.push_back({it->node, it->position, r.clamp});
+      continue;
+    }
+    auto s = mesh.sets.find(r.set);
+    if (s == mesh.sets.end() || s->second.empty()) {
+      std::vector<std::string> known;
+      for (const auto& kv : mesh.sets) known.push_back(kv.first);
+      for (const auto& f : body.interfaces) known.push_back(f.name);
+      const std::string near = closestMatch(r.set, known);
+      r.node.fail("the mesh has no node set or interface '" + r.set + "'" +
+                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    }
+    for (long n : s->second) constraints.push_back({n, mesh.nodes.row(n).transpose(), r.clamp});
+  }
+  const DofMap map = buildDofMap(mesh, constraints);
+  const Eigen::MatrixXd rigid_full = admissibleRigidModes(mesh, constraints);
+  Eigen::MatrixXd rigid(map.reduced, rigid_full.cols());
+  for (long j = 0; j < rigid_full.cols(); ++j) rigid.col(j) = map.restrict(rigid_full.col(j));
+  res.dofs = 6 * mesh.nodeCount();
+  res.reduced_dofs = map.reduced;
+  res.rigid_removed = rigid.cols();
+
+  // --- assembly
+  const long n_tri = static_cast<long>(mesh.triangles.size());
+  const long n_el = n_tri + static_cast<long>(mesh.beams.size());
+  ElementKernel kernel = [&](long e, ElementResult& out) {
+    if (e < n_tri) {
+      const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
+      Eigen::Matrix3d xyz;
+      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
+      const fe::ShellMatrices m =
+          fe::shellTriangle(xyz, spec.shell->laminate, spec.shell->kind, Eigen::Vector3d::UnitX());
+      out.nodes.assign(t.begin(), t.end());
+      out.K = m.K;
+      out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
+      out.lumped = m.lumped;
+    } else {
+      const auto& b = mesh.beams[static_cast<std::size_t>(e - n_tri)];
+      const fe::BeamMatrices m = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                                    kSectionX2, spec.beam->Ks, spec.beam->Ms);
+      out.nodes.assign(b.begin(), b.end());
+      out.K = m.K;
+      out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
+      out.lumped = m.lumped;
+    }
+  };
+  Progress pasm("assembly", 1.0, quiet);
+  AssembledSystem sys;
+  assemble(comm, mesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
+  pasm.finish("(" + std::to_string(map.reduced) + " DOF)");
+  res.stages.push_back({"assembly", sw.seconds(), peakRssMb()});
+
+  // --- eigen-solve
+  sw.start();
+  ModalRequest req;
+  req.modes = spec.modes;
+  req.max_frequency_hz = spec.max_frequency_hz;
+  req.tolerance = options.tolerance;
+  Progress peig("eigen-solve", 1.0, quiet);
+  const ModalResult modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
+    peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
+  });
+  peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(rigid.cols()) +
+              " rigid removed)");
+  res.stages.push_back({"eigensolve", sw.seconds(), peakRssMb()});
+  res.rigid_eigenvalues = modal.rigid_eigenvalues;
+  res.rigid_share_removed_min = modal.rigid_projection_min;
+  res.rigid_share_kept_max = modal.rigid_projection_max;
+
+  // --- the body
+  const long nm = modal.eigenvalues.size();
+  body.eigenvalues = modal.eigenvalues;
+  body.frequencies_hz = modal.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
+  body.shapes.resize(6 * mesh.nodeCount(), nm);
+  for (long j = 0; j < nm; ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
+  for (auto& fi : body.interfaces)
+    fi.shapes = interfaceShapes(body.shapes, fi.node, fi.position - mesh.nodes.row(fi.node).transpose());
+  IndexMatrix conn;
+  if (n_tri > 0) {
+    conn.resize(n_tri, 3);
+    for (long e = 0; e < n_tri; ++e)
+      for (int k = 0; k < 3; ++k) conn(e, k) = mesh.triangles[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)];
+    body.elements["triangles"] = conn;
+  }
+  if (!mesh.beams.empty()) {
+    conn.resize(static_cast<long>(mesh.beams.size()), 2);
+    for (long e = 0; e < conn.rows(); ++e)
+      for (int k = 0; k < 2; ++k) conn(e, k) = mesh.beams[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)];
+    body.elements["beams"] = conn;
+  }
+  body.nodal_mass.resize(mesh.nodeCount(), 4);
+  for (long i = 0; i < mesh.nodeCount(); ++i) {
+    // The three translational lumped entries are equal by construction; their mean is the nodal mass.
+    body.nodal_mass(i, 0) = sys.lumped.segment<3>(6 * i).mean();
+    body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
+  }
+  const RigidProperties rp =
+      spec.shell ? shellProperties(mesh, spec.shell->laminate) : beamProperties(mesh, spec.beam->Ms, kSectionX2);
+  body.mass = rp.mass;
+  body.center_of_mass = rp.centerOfMass();
+  body.inertia_tensor = rp.inertiaAboutOrigin();
+  return res;
+}
+
+}  // namespace fc::feprep

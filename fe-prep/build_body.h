@@ -1,0 +1,46 @@
+#pragma once
+// The whole fe-prep pipeline on one body: mesh (gmsh, rank 0), reference
+// conditions, parallel assembly (PETSc), modes (SLEPc), interface shapes and
+// exact rigid properties. Every rank returns the same FlexBody; rank 0 writes.
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include "common/flexbody.h"
+#include "fe-prep/body_spec.h"
+#include "fe-prep/mesh.h"
+
+namespace fc::feprep {
+
+struct StageStats {
+  std::string stage;     // meshing, assembly, eigensolve
+  double seconds = 0.0;  // wall time
+  double peak_rss_mb = 0.0;  // this process's peak resident memory after the stage
+};
+
+struct BuildResult {
+  FlexBody body;
+  long dofs = 0;          // unconstrained: 6 n_nodes
+  long reduced_dofs = 0;  // after the reference conditions
+  long rigid_removed = 0;
+  Eigen::VectorXd rigid_eigenvalues;
+  double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
+  std::vector<StageStats> stages;
+};
+
+struct BuildOptions {
+  bool quiet = false;    // no progress lines
+  double tolerance = 1e-11;
+};
+
+BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options = {});
+
+// The mesh of a body (rank 0 runs gmsh; the others receive it).
+Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet);
+
+// Shapes of a point P rigidly attached to a node X: u_P = u + theta x (P - X), theta_P = theta.
+// node_shapes (6 n_nodes, n_modes) node-major; returns (n_modes, 6).
+Eigen::MatrixXd interfaceShapes(const Eigen::MatrixXd& node_shapes, long node, const Eigen::Vector3d& offset);
+
+}  // namespace fc::feprep

@@ -1,0 +1,201 @@
+#include "fe-prep/modal_solver.h"
+
+#include <slepceps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fc::feprep {
+namespace {
+
+void check(PetscErrorCode ierr, const char* what) {
+  if (ierr) throw std::runtime_error(std::string("SLEPc/PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
+}
+
+struct MonitorContext {
+  const std::function<void(long, long)>* progress;
+  long wanted;
+};
+
+PetscErrorCode monitor(EPS, PetscInt, PetscInt nconv, PetscScalar*, PetscScalar*, PetscReal*, PetscInt, void* ctx) {
+  auto* c = static_cast<MonitorContext*>(ctx);
+  if (c->progress && *c->progress) (*c->progress)(std::min<long>(nconv, c->wanted), c->wanted);
+  return 0;
+}
+
+// A PETSc vector with the layout of M's rows holding this rank's part of v.
+Vec toPetsc(Mat M, const Eigen::VectorXd& v) {
+  Vec x;
+  check(MatCreateVecs(M, &x, nullptr), "MatCreateVecs");
+  PetscInt lo, hi;
+  check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
+  PetscScalar* a;
+  check(VecGetArray(x, &a), "VecGetArray");
+  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = v(i);
+  check(VecRestoreArray(x, &a), "VecRestoreArray");
+  return x;
+}
+
+struct Pair {
+  double lambda;
+  Eigen::VectorXd x;  // whole vector on every rank, M-normalised
+  double rigid_share;
+};
+
+}  // namespace
+
+ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
+                       const std::function<void(long, long)>& progress) {
+  PetscInt N;
+  check(MatGetSize(K, &N, nullptr), "MatGetSize");
+  const long r = rigid.cols();
+  const long elastic_available = N - r;
+  if (elastic_available <= 0) throw std::runtime_error("the model has no elastic degrees of freedom left");
+
+  // M-products of the rigid basis, for the share of each mode in the rigid space:
+  // share(x) = b^T G^{-1} b with b = R^T M x, G = R^T M R, x M-normalised.
+  std::vector<Vec> MR(static_cast<std::size_t>(r));
+  Eigen::MatrixXd G(r, r);
+  for (long j = 0; j < r; ++j) {
+    Vec Rj = toPetsc(M, rigid.col(j));
+    check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
+    check(MatMult(M, Rj, MR[static_cast<std::size_t>(j)]), "MatMult");
+    VecDestroy(&Rj);
+  }
+  for (long i = 0; i < r; ++i)
+    for (long j = 0; j < r; ++j) {
+      Vec Ri = toPetsc(M, rigid.col(i));
+      PetscScalar d;
+      check(VecDot(Ri, MR[static_cast<std::size_t>(j)], &d), "VecDot");
+      G(i, j) = d;
+      VecDestroy(&Ri);
+    }
+  const Eigen::MatrixXd Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
+
+  const double lambda_max =
+      request.max_frequency_hz > 0 ? std::pow(2 * M_PI * request.max_frequency_hz, 2) : 0.0;
+  long wanted = request.modes > 0 ? std::min(request.modes, elastic_available) : std::min<long>(12, elastic_available);
+
+  ModalResult result;
+  for (;;) {
+    const long nev = std::min<long>(wanted + r, N);
+    EPS eps;
+    check(EPSCreate(comm, &eps), "EPSCreate");
+    check(EPSSetOperators(eps, K, M), "EPSSetOperators");
+    check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+    check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+    check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT), "EPSSetDimensions");
+    check(EPSSetTolerances(eps, request.tolerance, 1000), "EPSSetTolerances");
+    const double sigma = r > 0 ? request.shift : 0.0;
+    check(EPSSetTarget(eps, sigma), "EPSSetTarget");
+    check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
+    ST st;
+    KSP ksp;
+    PC pc;
+    check(EPSGetST(eps, &st), "EPSGetST");
+    check(STSetType(st, STSINVERT), "STSetType");
+    check(STGetKSP(st, &ksp), "STGetKSP");
+    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    // K - sigma M is symmetric positive definite for sigma < 0 (or sigma = 0 and
+    // a constrained K): Cholesky halves MUMPS's work and memory against LU.
+    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    MonitorContext mctx{&progress, nev};
+    check(EPSMonitorSet(eps, monitor, &mctx, nullptr), "EPSMonitorSet");
+    check(EPSSetFromOptions(eps), "EPSSetFromOptions");
+    check(EPSSolve(eps), "EPSSolve");
+    PetscInt nconv, its;
+    check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+    check(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
+    result.iterations += its;
+
+    std::vector<Pair> pairs;
+    Vec xr, Mx, xall;
+    VecScatter scatter;
+    check(MatCreateVecs(K, &xr, &Mx), "MatCreateVecs");
+    check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
+    for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
+      PetscScalar kr;
+      check(EPSGetEigenpair(eps, i, &kr, nullptr, xr, nullptr), "EPSGetEigenpair");
+      check(MatMult(M, xr, Mx), "MatMult");
+      PetscScalar xmx;
+      check(VecDot(xr, Mx, &xmx), "VecDot");
+      check(VecScale(xr, 1.0 / std::sqrt(xmx)), "VecScale");
+      check(VecScale(Mx, 1.0 / std::sqrt(xmx)), "VecScale");
+      Eigen::VectorXd b(r);
+      for (long j = 0; j < r; ++j) {
+        PetscScalar d;
+        check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
+        b(j) = d;
+      }
+      const double share = r ? b.dot(Ginv * b) : 0.0;
+      check(VecScatterBegin(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+      check(VecScatterEnd(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+      const PetscScalar* a;
+      check(VecGetArrayRead(xall, &a), "VecGetArrayRead");
+      Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(a, N);
+      check(VecRestoreArrayRead(xall, &a), "VecRestoreArrayRead");
+      // A sign convention makes files comparable between runs: largest entry positive.
+      Eigen::Index imax;
+      x.cwiseAbs().maxCoeff(&imax);
+      if (x(imax) < 0) x = -x;
+      pairs.push_back({kr, std::move(x), share});
+    }
+    VecScatterDestroy(&scatter);
+    VecDestroy(&xall);
+    VecDestroy(&xr);
+    VecDestroy(&Mx);
+    EPSDestroy(&eps);
+
+    if (static_cast<long>(pairs.size()) < nev)
+      throw std::runtime_error("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +
+                               std::to_string(nev) + " modes");
+
+    // The r modes with the largest rigid share are the rigid ones.
+    std::vector<std::size_t> order(pairs.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return pairs[a].rigid_share > pairs[b].rigid_share; });
+    std::vector<Pair> kept, removed;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      (static_cast<long>(k) < r ? removed : kept).push_back(std::move(pairs[order[k]]));
+    auto by_lambda = [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; };
+    std::sort(kept.begin(), kept.end(), by_lambda);
+    std::sort(removed.begin(), removed.end(), by_lambda);
+
+    const bool exhausted = nev >= N;
+    if (lambda_max > 0 && !exhausted && (kept.empty() || kept.back().lambda <= lambda_max)) {
+      wanted = std::min<long>(2 * wanted, elastic_available);
+      continue;
+    }
+    long keep = static_cast<long>(kept.size());
+    if (lambda_max > 0) {
+      keep = 0;
+      while (keep < static_cast<long>(kept.size()) && kept[static_cast<std::size_t>(keep)].lambda <= lambda_max) ++keep;
+    } else {
+      keep = std::min<long>(keep, wanted);
+    }
+    result.eigenvalues.resize(keep);
+    result.vectors.resize(N, keep);
+    for (long k = 0; k < keep; ++k) {
+      result.eigenvalues(k) = kept[static_cast<std::size_t>(k)].lambda;
+      result.vectors.col(k) = kept[static_cast<std::size_t>(k)].x;
+      result.rigid_projection_max = std::max(result.rigid_projection_max, kept[static_cast<std::size_t>(k)].rigid_share);
+    }
+    result.rigid_eigenvalues.resize(r);
+    for (long k = 0; k < r; ++k) {
+      result.rigid_eigenvalues(k) = removed[static_cast<std::size_t>(k)].lambda;
+      result.rigid_projection_min = std::min(result.rigid_projection_min, removed[static_cast<std::size_t>(k)].rigid_share);
+    }
+    break;
+  }
+  for (auto& v : MR) VecDestroy(&v);
+  return result;
+}
+
+}  // namespace fc::feprep

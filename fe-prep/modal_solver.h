@@ -1,0 +1,37 @@
+#pragma once
+// The generalized eigenproblem K x = lambda M x with SLEPc: Krylov-Schur with
+// shift-and-invert, the shifted matrix factorised by MUMPS (Cholesky). The
+// rigid-body motions the reference leaves free are found among the lowest
+// modes and removed: they are identified by their projection on the
+// geometric rigid-mode space, not by a threshold on lambda.
+#include <petscmat.h>
+
+#include <Eigen/Dense>
+#include <functional>
+
+namespace fc::feprep {
+
+struct ModalRequest {
+  long modes = 0;                 // lowest elastic modes wanted, or
+  double max_frequency_hz = 0.0;  // all elastic modes below this frequency
+  double tolerance = 1e-11;       // SLEPc relative residual tolerance
+  // Shift sigma < 0 (rad/s)^2 when rigid modes exist (K singular); with all
+  // lambda >= 0 > sigma the modes nearest sigma are exactly the lowest ones.
+  double shift = -1.0;
+};
+
+struct ModalResult {
+  Eigen::VectorXd eigenvalues;        // elastic, ascending (omega^2)
+  Eigen::MatrixXd vectors;            // reduced DOF x modes, M-orthonormal (every rank)
+  Eigen::VectorXd rigid_eigenvalues;  // the removed ones (should be ~0)
+  double rigid_projection_min = 1.0;  // smallest rigid-space share among the removed modes
+  double rigid_projection_max = 0.0;  // largest rigid-space share among the kept modes
+  long iterations = 0;
+};
+
+// rigid: reduced DOF x r basis of the admissible rigid motions (every rank).
+// progress(converged, wanted) is called on rank 0 during the iteration.
+ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
+                       const std::function<void(long, long)>& progress = {});
+
+}  // namespace fc::feprep

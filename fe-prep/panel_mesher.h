@@ -1,0 +1,40 @@
+#pragma once
+// Shell meshes from gmsh (C++ API): rectangular panels centred on the origin
+// and arbitrary .geo files, with interface projections forced in as nodes.
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "fe-prep/mesh.h"
+
+namespace fc::feprep {
+
+struct PanelMeshRequest {
+  double length = 0.0;  // along x
+  double width = 0.0;   // along y
+  // Exactly one of: approximate number of triangles, or target element size.
+  long triangles = 0;
+  double size = 0.0;
+  // Points (x, y) that must be mesh nodes: the interfaces' projections on z = 0.
+  std::vector<Eigen::Vector2d> forced_points;
+  bool quiet = true;
+};
+
+// Unstructured Frontal-Delaunay triangles on [-L/2, L/2] x [-W/2, W/2], z = 0.
+// With a triangle target the element size is iterated (a few gmsh runs) until
+// the count is within 10 % of the target or stops improving. Node sets
+// edge_xmin, edge_xmax, edge_ymin, edge_ymax. Forced points must lie in the
+// rectangle (std::invalid_argument otherwise).
+Mesh meshRectangle(const PanelMeshRequest& request);
+
+// The triangles of a .geo (or .msh) file; size > 0 caps the element size.
+// Physical groups of dimension 0 and 1 become node sets under their names.
+// Forced points are embedded into the surface that contains them when it is a
+// plane surface of the geo kernel; otherwise the nearest node is used.
+Mesh meshGeoFile(const std::string& path, double size, const std::vector<Eigen::Vector3d>& forced_points,
+                 bool quiet = true);
+
+// Size h giving about n triangles on area A (equilateral triangles: A = n sqrt(3)/4 h^2).
+double sizeForTriangleCount(double area, long n);
+
+}  // namespace fc::feprep
