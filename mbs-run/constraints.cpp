@@ -1,0 +1,181 @@
+#include "mbs-run/constraints.h"
+
+#include <cmath>
+
+namespace fc::mbs {
+
+using Eigen::Vector3d;
+
+void ConstraintRows::resize(int n) {
+  Ji.setZero(n, 6);
+  Jj.setZero(n, 6);
+  phi.setZero(n);
+  phit.setZero(n);
+  c.setZero(n);
+}
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void spherical(const Attached& xi, const Attached& xj, ConstraintRows& o, int row) {
+  o.phi.segment<3>(row) = xj.x - xi.x;
+  o.Ji.block<3, 6>(row, 0) = -xi.J;
+  o.Jj.block<3, 6>(row, 0) = xj.J;
+  o.c.segment<3>(row) = xj.extra - xi.extra;
+}
+
+// a on body i, b on body j.
+void dot1(const Attached& a, const Attached& b, ConstraintRows& o, int row) {
+  o.phi[row] = a.x.dot(b.x);
+  o.Ji.row(row) = b.x.transpose() * a.J;
+  o.Jj.row(row) = a.x.transpose() * b.J;
+  o.c[row] = b.x.dot(a.extra) + a.x.dot(b.extra) + 2.0 * a.xdot.dot(b.xdot);
+}
+
+// a on body i, d = x_j - x_i.
+void dot2(const Attached& a, const Attached& xi, const Attached& xj, ConstraintRows& o, int row) {
+  const Vector3d d = xj.x - xi.x, ddot = xj.xdot - xi.xdot;
+  o.phi[row] = a.x.dot(d);
+  o.Ji.row(row) = d.transpose() * a.J - a.x.transpose() * xi.J;
+  o.Jj.row(row) = a.x.transpose() * xj.J;
+  o.c[row] = d.dot(a.extra) + a.x.dot(xj.extra - xi.extra) + 2.0 * a.xdot.dot(ddot);
+}
+
+// Driven angle: a(t) = A_i (cos(beta) h_i - sin(beta) f_i), beta = beta(t), b = f_j.
+// Phi = sin(raw - beta). The time derivatives of beta enter Phi_t and c.
+void drivenDot1(const BodyPose& bi, const RevoluteFrame& fr, const Attached& b, double beta,
+                double beta_dot, double beta_ddot, ConstraintRows& o, int row) {
+  const Vector3d a_body = std::cos(beta) * fr.hi - std::sin(beta) * fr.fi;
+  const Vector3d a1_body = -std::sin(beta) * fr.hi - std::cos(beta) * fr.fi;  // d a / d beta
+  const Attached a = attachedVector(bi, a_body);
+  const Vector3d a1 = bi.A * a1_body;
+  const Vector3d adot_total = a.xdot + beta_dot * a1;
+  const Vector3d aextra_total = a.extra + 2.0 * beta_dot * (bi.A * bi.w.cross(a1_body)) +
+                                beta_ddot * a1 - beta_dot * beta_dot * a.x;
+  o.phi[row] = a.x.dot(b.x);
+  o.Ji.row(row) = b.x.transpose() * a.J;
+  o.Jj.row(row) = a.x.transpose() * b.J;
+  o.phit[row] = beta_dot * a1.dot(b.x);
+  o.c[row] = b.x.dot(aextra_total) + a.x.dot(b.extra) + 2.0 * adot_total.dot(b.xdot);
+}
+
+double wrapToPi(double a) {
+  a = std::fmod(a + kPi, 2.0 * kPi);
+  if (a < 0) a += 2.0 * kPi;
+  return a - kPi;
+}
+
+}  // namespace
+
+RevoluteFrame revoluteFrame(const Joint& jt) {
+  RevoluteFrame f;
+  Vector3d w;
+  orthonormalComplement(jt.axis_i, f.fi, w);
+  f.hi = jt.axis_i.normalized().cross(f.fi);
+  orthonormalComplement(jt.axis_j, f.fj, w);
+  return f;
+}
+
+double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
+  const RevoluteFrame fr = revoluteFrame(jt);
+  const Vector3d fi = bi.A * fr.fi, hi = bi.A * fr.hi, fj = bj.A * fr.fj;
+  return std::atan2(fj.dot(hi), fj.dot(fi));
+}
+
+double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
+  const double a = rawRevoluteAngle(jt, bi, bj) + rt.angle_offset;
+  return rt.last_angle + wrapToPi(a - rt.last_angle);
+}
+
+double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
+  const Vector3d axis = bi.A * jt.axis_i.normalized();
+  return axis.dot(bj.A * bj.w - bi.A * bi.w);
+}
+
+void captureFixed(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
+  const Vector3d xi = bi.r + bi.A * jt.point_i, xj = bj.r + bj.A * jt.point_j;
+  rt.fixed_offset = bi.A.transpose() * (xj - xi);
+  rt.fixed_rotation = bi.A.transpose() * bj.A;
+}
+
+void captureLock(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
+  const RevoluteFrame fr = revoluteFrame(jt);
+  // f_j seen in body i now; the held direction is perpendicular to it in the plane.
+  const Vector3d fj_in_i = bi.A.transpose() * (bj.A * fr.fj);
+  rt.lock_vector = jt.axis_i.normalized().cross(fj_in_i).normalized();
+}
+
+int constraintCount(const Joint& jt, const JointRuntime& rt) {
+  if (!rt.enabled) return 0;
+  switch (jt.type) {
+    case JointType::Spherical: return 3;
+    case JointType::Revolute: return (rt.locked || jt.drive.active) ? 6 : 5;
+    case JointType::Fixed: return 6;
+    case JointType::Universal: return 4;
+    case JointType::Cylindrical: return 4;
+    case JointType::Prismatic: return 5;
+  }
+  return 0;
+}
+
+void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& bi,
+                      const BodyPose& bj, double t, ConstraintRows& o) {
+  o.resize(constraintCount(jt, rt));
+  if (o.size() == 0) return;
+  const Attached xj = attachedPoint(bj, jt.point_j);
+  switch (jt.type) {
+    case JointType::Spherical:
+      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
+      break;
+    case JointType::Universal:
+      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
+      dot1(attachedVector(bi, jt.axis_i), attachedVector(bj, jt.axis_j), o, 3);
+      break;
+    case JointType::Revolute: {
+      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
+      Vector3d uj, wj;
+      orthonormalComplement(jt.axis_j, uj, wj);
+      const Attached ai = attachedVector(bi, jt.axis_i.normalized());
+      dot1(ai, attachedVector(bj, uj), o, 3);
+      dot1(ai, attachedVector(bj, wj), o, 4);
+      const RevoluteFrame fr = revoluteFrame(jt);
+      if (jt.drive.active) {
+        const Attached fj = attachedVector(bj, fr.fj);
+        drivenDot1(bi, fr, fj, jt.drive.angle(t) - rt.angle_offset, jt.drive.rate(t),
+                   jt.drive.accel(t), o, 5);
+      } else if (rt.locked) {
+        dot1(attachedVector(bi, rt.lock_vector), attachedVector(bj, fr.fj), o, 5);
+      }
+      break;
+    }
+    case JointType::Fixed: {
+      spherical(attachedPoint(bi, jt.point_i + rt.fixed_offset), xj, o, 0);
+      const Eigen::Matrix3d& R = rt.fixed_rotation;
+      for (int k = 0; k < 3; ++k) {
+        dot1(attachedVector(bi, R.col(k)), attachedVector(bj, Eigen::Vector3d::Unit((k + 1) % 3)), o,
+             3 + k);
+      }
+      break;
+    }
+    case JointType::Cylindrical:
+    case JointType::Prismatic: {
+      const Attached xi = attachedPoint(bi, jt.point_i);
+      Vector3d ui, wi, uj, wj;
+      orthonormalComplement(jt.axis_i, ui, wi);
+      orthonormalComplement(jt.axis_j, uj, wj);
+      const Attached ai = attachedVector(bi, jt.axis_i.normalized());
+      dot2(attachedVector(bi, ui), xi, xj, o, 0);
+      dot2(attachedVector(bi, wi), xi, xj, o, 1);
+      dot1(ai, attachedVector(bj, uj), o, 2);
+      dot1(ai, attachedVector(bj, wj), o, 3);
+      if (jt.type == JointType::Prismatic) {
+        const RevoluteFrame fr = revoluteFrame(jt);
+        dot1(attachedVector(bi, rt.lock_vector), attachedVector(bj, fr.fj), o, 4);
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace fc::mbs

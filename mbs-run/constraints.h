@@ -1,0 +1,66 @@
+#pragma once
+// Constraint equations of the joints, built from three primitives:
+//   spherical  x_j - x_i = 0                       (3 rows)
+//   dot-1      a_i . b_j = 0   (two body vectors perpendicular)
+//   dot-2      a_i . (x_j - x_i) = 0               (Nikravesh 1988, sec. 7.3)
+// For each row: the value Phi, its Jacobian blocks on the velocity coordinates of
+// body i and j, the explicit time derivative Phi_t (driven joints) and
+// c = Phi_ddot - Phi_v vdot, so that the acceleration equation is Phi_v vdot = -c.
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include "mbs-run/kinematics.h"
+#include "mbs-run/model.h"
+
+namespace fc::mbs {
+
+// What a joint holds at run time (captured when it becomes active or locked).
+struct JointRuntime {
+  bool enabled = true;
+  bool locked = false;
+  // Fixed joint: the offset of the point of j from the point of i in body i
+  // axes, and the relative rotation A_i^T A_j, both captured at activation.
+  Eigen::Vector3d fixed_offset = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d fixed_rotation = Eigen::Matrix3d::Identity();
+  // Locked revolute / prismatic: body-i vector whose dot product with the
+  // reference vector of j is sin(angle - held angle).
+  Eigen::Vector3d lock_vector = Eigen::Vector3d::Zero();
+  // Revolute angle = raw atan2 angle + angle_offset, unwrapped about last_angle.
+  double angle_offset = 0.0;
+  double last_angle = 0.0;
+};
+
+struct ConstraintRows {
+  Eigen::MatrixXd Ji, Jj;  // (n, 6) each
+  Eigen::VectorXd phi, phit, c;
+  int size() const { return static_cast<int>(phi.size()); }
+  void resize(int n);
+};
+
+// Reference vectors of a revolute (or prismatic) joint: axis on i, f_i and
+// h_i = axis x f_i perpendicular to it on body i, f_j perpendicular to axis_j on j.
+struct RevoluteFrame {
+  Eigen::Vector3d fi, hi, fj;
+};
+RevoluteFrame revoluteFrame(const Joint& jt);
+
+// Raw relative angle of body j about the axis of body i, in (-pi, pi].
+double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj);
+// Unwrapped angle (continuous past pi) given the runtime's last known angle.
+double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi, const BodyPose& bj);
+// d(angle)/dt = axis . (omega_j - omega_i), global.
+double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj);
+
+// Captures the current relative pose into rt (fixed joint activation, locking).
+void captureFixed(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj);
+void captureLock(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj);
+
+// Number of equations of the joint in its current runtime state (0 if disabled).
+int constraintCount(const Joint& jt, const JointRuntime& rt);
+// Rows of one joint at time t. Translational rows (if any) come first, so the
+// reaction force on body i is minus their multipliers' force (see dynamics).
+void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& bi,
+                      const BodyPose& bj, double t, ConstraintRows& out);
+
+}  // namespace fc::mbs

@@ -1,0 +1,50 @@
+#pragma once
+// Time integrators with error control behind one interface, so the simulation
+// driver (events, output sampling, projections) does not care which is used.
+#include <Eigen/Dense>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace fc::mbs {
+
+using Rhs = std::function<void(double, const Eigen::VectorXd&, Eigen::VectorXd&)>;
+
+struct Tolerances {
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  // Per-component weight of the error norm: 0 excludes a component (quadratures).
+  Eigen::VectorXd mask;
+  double max_step = 0.0;  // 0: unlimited
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // (Re)starts at (t, y): after events and projections the history is invalid.
+  virtual void reset(double t, const Eigen::VectorXd& y) = 0;
+  // One accepted step, never past t_limit. False when the step size underflows.
+  virtual bool step(double t_limit) = 0;
+  virtual double t() const = 0;
+  virtual double tPrevious() const = 0;
+  virtual const Eigen::VectorXd& y() const = 0;
+  // Continuous extension over the last accepted step [tPrevious, t].
+  virtual Eigen::VectorXd interpolate(double t) const = 0;
+  virtual std::string name() const = 0;
+  long steps = 0, rejected = 0;
+};
+
+// Dormand & Prince RK5(4)7M with Hairer's 4th-order dense output (Hairer,
+// Norsett & Wanner, Solving ODEs I, sec. II.5-6, code DOPRI5), FSAL, PI step
+// control (Gustafsson), explicit: for non-stiff scenes.
+std::unique_ptr<Integrator> makeDormandPrince(Rhs f, const Tolerances& tol);
+// TR-BDF2 (Bank et al. 1985, in the one-step form of Hosea & Shampine, Appl.
+// Numer. Math. 20 (1996) 21-37): trapezoidal stage to t + gamma h then BDF2,
+// gamma = 2 - sqrt(2), both with the same iteration matrix I - d h J; L-stable,
+// order 2, embedded 3rd-order estimate filtered by (I - d h J)^-1 so that stiff
+// components do not spoil the step control. Simplified Newton with a
+// finite-difference Jacobian reused across steps. For stiff scenes.
+std::unique_ptr<Integrator> makeTrBdf2(Rhs f, const Tolerances& tol);
+
+}  // namespace fc::mbs

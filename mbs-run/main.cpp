@@ -1,0 +1,86 @@
+// mbs-run SCENE.yaml -o RESULTS.h5: multibody dynamics of a scene.
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+#include <sstream>
+
+#include "common/cli.h"
+#include "common/files.h"
+#include "common/version.h"
+#include "mbs-run/results.h"
+#include "mbs-run/scene.h"
+#include "mbs-run/simulation.h"
+
+namespace {
+
+extern "C" void onSignal(int sig) { fc::mbs::g_stop_signal.store(sig); }
+
+std::vector<std::string> splitComma(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std::string& out) {
+  const double t = r.t_reached;
+  std::printf("mbs-run %s: %s -> %s\n", fc::version(), m.source.c_str(), out.c_str());
+  std::printf("  status: %s (t = %.6g of %.6g s)\n", r.status.c_str(), t, m.settings.t_end);
+  std::printf("  integrator %s, rtol %.3g: %ld steps, %ld rejected, %ld evaluations, AL iterations <= %d\n",
+              r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.max_al_iterations);
+  std::printf("  CPU %.3f s, real-time factor %.3g (simulated s per CPU s)\n", r.cpu_seconds,
+              r.cpu_seconds > 0 ? t / r.cpu_seconds : 0.0);
+  std::printf("  largest constraint violation %.3e\n", r.max_violation);
+  std::printf("  energy balance error %.3e J (%.3e of the largest energy term %.3e J)\n", r.energy_balance_error,
+              r.energy_scale > 0 ? r.energy_balance_error / r.energy_scale : 0.0, r.energy_scale);
+  for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mbs-run: multibody dynamics of rigid (and flexible) bodies with joints, actuators and events"};
+  std::string input, output, csv, channels;
+  double t_end = -1, rtol = -1;
+  std::string integrator;
+  bool quiet = false;
+  app.add_option("scene", input, "scene YAML file (contracts.md, mbs-run)")->required();
+  app.add_option("-o,--output", output, "results file to write (HDF5, results/1)")->required();
+  app.add_option("--t-end", t_end, "end time, overrides simulation.t_end")->check(CLI::PositiveNumber);
+  app.add_option("--rtol", rtol, "relative tolerance, overrides simulation.rtol")->check(CLI::Range(1e-13, 0.1));
+  app.add_option("--integrator", integrator, "auto | dopri5 | trbdf2, overrides simulation.integrator")
+      ->check(CLI::IsMember({"auto", "dopri5", "trbdf2"}));
+  app.add_option("--csv", csv, "also write chosen channels to this CSV file");
+  app.add_option("--channels", channels,
+                 "comma-separated channels for --csv, e.g. joints/R3/angle,bodies/B3/angular_velocity "
+                 "(default: revolute angles and energies)");
+  app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  app.set_version_flag("--version", std::string("mbs-run ") + fc::version());
+  CLI11_PARSE(app, argc, argv);
+
+  return fc::guardedMain("mbs-run", [&] {
+    fc::mbs::Model model = fc::mbs::loadScene(input);
+    if (t_end > 0) model.settings.t_end = t_end;
+    if (rtol > 0) model.settings.rtol = rtol;
+    if (integrator == "dopri5") model.settings.integrator = fc::mbs::IntegratorKind::DormandPrince;
+    if (integrator == "trbdf2") model.settings.integrator = fc::mbs::IntegratorKind::Bdf;
+    if (integrator == "auto") model.settings.integrator = fc::mbs::chooseIntegrator(model);
+    std::vector<std::string> chosen = splitComma(channels);
+    if (chosen.empty()) {
+      for (const auto& j : model.joints)
+        if (j.type == fc::mbs::JointType::Revolute) chosen.push_back("joints/" + j.name + "/angle");
+      for (const char* e : {"energy/kinetic", "energy/potential", "energy/dissipated"}) chosen.push_back(e);
+    }
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    fc::mbs::RunOptions opt;
+    opt.quiet = quiet;
+    const fc::mbs::Results r = fc::mbs::simulate(model, opt);
+    fc::mbs::writeResults(output, model, r, fc::sha256File(input));
+    if (!csv.empty()) fc::mbs::writeCsv(csv, model, r, chosen);
+    printSummary(model, r, output);
+    return r.status == "completed" ? 0 : 3;
+  });
+}

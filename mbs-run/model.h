@@ -1,0 +1,125 @@
+#pragma once
+// The constant description of a multibody scene (Pinocchio's Model/Data split):
+// bodies, joints, force elements, events and run settings, as parsed from the
+// scene. Nothing here changes while integrating; the evolving state lives in
+// SystemState (state.h) and the run-time switches in Switches (switches below).
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+namespace fc::mbs {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Eigen::Vector4d;
+using Eigen::VectorXd;
+
+struct Body {
+  std::string name;
+  double mass = 1.0;
+  Vector3d com = Vector3d::Zero();         // centre of mass, body frame
+  Matrix3d inertia_com = Matrix3d::Identity();  // about the CoM, body axes
+  bool fixed = false;
+  // Initial state (global): frame origin, Euler parameters, velocity of the
+  // origin, angular velocity.
+  Vector3d position = Vector3d::Zero();
+  Vector4d orientation = Vector4d(1, 0, 0, 0);
+  Vector3d velocity = Vector3d::Zero();
+  Vector3d angular_velocity = Vector3d::Zero();
+  int dof_index = -1;  // first velocity coordinate (6 per free body), -1 if fixed
+  int pos_index = -1;  // first position coordinate (7 per free body)
+};
+
+enum class JointType { Spherical, Revolute, Fixed, Universal, Cylindrical, Prismatic };
+
+// Prescribed revolute angle: angle0 + speed t + amplitude sin(2 pi frequency t + phase).
+// Smooth in time so that the driven accelerations stay finite.
+struct Drive {
+  bool active = false;
+  double angle0 = 0, speed = 0, amplitude = 0, frequency = 0, phase = 0;
+  double angle(double t) const;
+  double rate(double t) const;
+  double accel(double t) const;
+};
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::Spherical;
+  int body_i = -1, body_j = -1;               // indices into Model::bodies
+  Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();  // body frames
+  Vector3d axis_i = Vector3d::UnitZ(), axis_j = Vector3d::UnitZ();  // unit, body frames
+  double initial_angle = 0.0;                 // revolute: angle in the initial configuration
+  bool enabled = true;
+  bool locked = false;                        // revolute: angle held
+  Drive drive;                                // revolute: angle prescribed in time
+};
+
+enum class ForceType { Gravity, RotationalSpringDamper, TranslationalSpringDamper, ConstantForce, ConstantTorque };
+
+// f(x) piecewise linear through (x_k, y_k), constant beyond the ends.
+struct PiecewiseLinear {
+  std::vector<double> x, y;
+  double value(double at) const;
+  // Integral of f from 0 to `at` (the potential of a spring whose torque is f).
+  double integral(double at) const;
+};
+
+struct ForceElement {
+  std::string name;
+  ForceType type = ForceType::Gravity;
+  bool enabled = true;
+  Vector3d vector = Vector3d::Zero();   // gravity g, constant force or torque (global)
+  int joint = -1;                       // rotational spring-damper
+  PiecewiseLinear torque;               // rotational: f(angle)
+  double damping = 0.0;                 // rotational [N m s], translational [N s/m]
+  int body_i = -1, body_j = -1;         // translational spring / constant force (body_i)
+  Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();
+  double stiffness = 0.0, free_length = 0.0;  // translational spring
+};
+
+struct Event {
+  // Either a time, or a joint-angle crossing: the first time after the start at
+  // which the joint's angle passes `angle` (in `direction`: +1 rising, -1 falling, 0 any).
+  double time = -1.0;
+  int joint = -1;
+  double angle = 0.0;
+  int direction = 0;
+  std::vector<int> lock, release;               // revolute joints
+  std::vector<int> enable_joints, disable_joints;
+  std::vector<int> enable_forces, disable_forces;
+  std::string label;
+};
+
+enum class IntegratorKind { Auto, DormandPrince, Bdf };
+
+struct Settings {
+  double t_end = 1.0;
+  double output_step = 0.01;
+  double rtol = 1e-6;
+  double atol = -1.0;            // < 0: rtol * 1e-3 (positions in m, angles in rad, ~1)
+  IntegratorKind integrator = IntegratorKind::Auto;
+  double max_step = -1.0;        // < 0: output_step
+  // Augmented Lagrangian (Bayo & Ledesma 1996): penalty scale relative to the
+  // largest free-body mass, and the Baumgarte-like frequency and damping ratio.
+  double penalty = 1.0e7;
+  double omega = 10.0, xi = 1.0;
+};
+
+struct Model {
+  std::vector<Body> bodies;
+  std::vector<Joint> joints;
+  std::vector<ForceElement> forces;
+  std::vector<Event> events;
+  Settings settings;
+  int nq = 0, nv = 0;  // 7 and 6 per free body
+  std::string source;  // scene file, for messages
+
+  // Assigns dof_index/pos_index and nq/nv; call after the bodies are final.
+  void finalize();
+  int bodyIndex(const std::string& name) const;
+  int jointIndex(const std::string& name) const;
+  int forceIndex(const std::string& name) const;
+};
+
+}  // namespace fc::mbs

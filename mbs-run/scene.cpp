@@ -1,0 +1,390 @@
+#include "mbs-run/scene.h"
+
+#include <cmath>
+#include <set>
+
+#include "common/rotations.h"
+#include "mbs-run/rigid_body.h"
+
+namespace fc::mbs {
+
+using Eigen::Vector3d;
+
+namespace {
+
+Vector3d vec3(const InputNode& n) { return n.asVector(3); }
+
+Vector3d unitVector(const InputNode& n) {
+  const Vector3d v = n.asVector(3);
+  if (v.norm() < 1e-12) n.fail("expected a non-zero direction vector, got [0, 0, 0]");
+  return v.normalized();
+}
+
+Eigen::Matrix3d inertiaMatrix(const InputNode& n) {
+  const Eigen::Matrix3d I = n.asMatrix(3, 3);
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + I.cwiseAbs().maxCoeff()))
+    n.fail("expected a symmetric 3x3 inertia tensor");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I);
+  const Eigen::Vector3d ev = es.eigenvalues();
+  if (ev.minCoeff() <= 0.0)
+    n.fail("expected a positive definite inertia tensor (principal moments > 0)");
+  // Triangle inequality of principal moments (any real mass distribution).
+  if (ev[0] + ev[1] < ev[2] * (1 - 1e-9))
+    n.fail("principal moments violate I1 + I2 >= I3: not a physical mass distribution");
+  return I;
+}
+
+// A body given as a rigid block, or as a uniform rod or plate from dimensions.
+void parseInertia(const InputNode& b, Body& body) {
+  int given = b.has("rigid") + b.has("rod") + b.has("plate") + b.has("flexible");
+  if (given != 1)
+    b.fail("expected exactly one of 'rigid', 'rod', 'plate' or 'flexible' to define the body's inertia");
+  if (b.has("flexible")) {
+    b["flexible"].fail("flexible bodies are not yet supported by this mbs-run (the flexible kernel is being "
+                       "integrated); use 'rigid' (or 'rod'/'plate') for now");
+  }
+  if (b.has("rigid")) {
+    const InputNode r = b["rigid"];
+    r.allowKeys({"mass", "center_of_mass", "inertia"});
+    body.mass = r["mass"].asPositive();
+    body.com = r.has("center_of_mass") ? vec3(r["center_of_mass"]) : Vector3d::Zero();
+    body.inertia_com = inertiaMatrix(r["inertia"]);
+    return;
+  }
+  // Uniform solids: the mass from `mass`, or from `density` and the volume.
+  auto massOf = [](const InputNode& n, double volume) {
+    if (n.has("mass") == n.has("density"))
+      n.fail("expected exactly one of 'mass' or 'density'");
+    return n.has("mass") ? n["mass"].asPositive() : n["density"].asPositive() * volume;
+  };
+  if (b.has("rod")) {
+    const InputNode r = b["rod"];
+    r.allowKeys({"length", "diameter", "mass", "density"});
+    const double L = r["length"].asPositive(), d = r["diameter"].asPositive();
+    body.mass = massOf(r, L * 0.25 * M_PI * d * d);
+    body.inertia_com = rodInertia(body.mass, L, d);
+  } else {
+    const InputNode p = b["plate"];
+    p.allowKeys({"length", "width", "thickness", "mass", "density"});
+    const double a = p["length"].asPositive(), w = p["width"].asPositive(), t = p["thickness"].asPositive();
+    body.mass = massOf(p, a * w * t);
+    body.inertia_com = plateInertia(body.mass, a, w, t);
+  }
+  body.com.setZero();
+}
+
+Body parseBody(const InputNode& b) {
+  b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
+               "angular_velocity"});
+  Body body;
+  body.name = b["name"].asString();
+  parseInertia(b, body);
+  body.fixed = b.flag("fixed", false);
+  if (b.has("position")) body.position = vec3(b["position"]);
+  if (b.has("orientation")) {
+    const Eigen::VectorXd p = b["orientation"].asVector(4);
+    const double n = p.norm();
+    if (std::abs(n - 1.0) > 1e-6)
+      b["orientation"].fail("expected unit Euler parameters [e0, e1, e2, e3], got norm " + std::to_string(n));
+    body.orientation = Eigen::Vector4d(p / n);
+  }
+  if (b.has("velocity")) body.velocity = vec3(b["velocity"]);
+  if (b.has("angular_velocity")) body.angular_velocity = vec3(b["angular_velocity"]);
+  if (body.fixed && (body.velocity.norm() > 0 || body.angular_velocity.norm() > 0))
+    b.fail("a fixed body cannot have an initial velocity");
+  return body;
+}
+
+int bodyRef(const Model& m, const InputNode& n) {
+  const std::string name = n.asString();
+  const int k = m.bodyIndex(name);
+  if (k < 0) {
+    std::vector<std::string> names;
+    for (const Body& b : m.bodies) names.push_back(b.name);
+    const std::string hint = closestMatch(name, names);
+    n.fail("unknown body '" + name + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  }
+  return k;
+}
+
+Vector3d pointRef(const Model& m, int body, const InputNode& n) {
+  if (n.isScalar())
+    n.fail("'" + n.asString() + "' names an interface, but body '" + m.bodies[body].name +
+           "' is rigid: expected body-frame coordinates [x, y, z]");
+  return vec3(n);
+}
+
+JointType jointType(const InputNode& n) {
+  const std::string t = n.asString();
+  if (t == "spherical") return JointType::Spherical;
+  if (t == "revolute") return JointType::Revolute;
+  if (t == "fixed") return JointType::Fixed;
+  if (t == "universal") return JointType::Universal;
+  if (t == "cylindrical") return JointType::Cylindrical;
+  if (t == "prismatic") return JointType::Prismatic;
+  const std::string hint =
+      closestMatch(t, {"spherical", "revolute", "fixed", "universal", "cylindrical", "prismatic"});
+  n.fail("unknown joint type '" + t + "': expected spherical, revolute, fixed, universal, cylindrical or prismatic" +
+         (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+Joint parseJoint(const Model& m, const InputNode& j) {
+  j.allowKeys({"name", "type", "bodies", "points", "axes", "initial_angle", "enabled", "locked", "drive"});
+  Joint jt;
+  jt.name = j["name"].asString();
+  jt.type = jointType(j["type"]);
+  const InputNode bodies = j["bodies"];
+  if (!bodies.isSequence() || bodies.size() != 2) bodies.fail("expected two body names [first, second]");
+  jt.body_i = bodyRef(m, bodies.at(0));
+  jt.body_j = bodyRef(m, bodies.at(1));
+  if (jt.body_i == jt.body_j) bodies.fail("expected two different bodies");
+  if (m.bodies[jt.body_i].fixed && m.bodies[jt.body_j].fixed)
+    bodies.fail("both bodies are fixed: the joint would constrain nothing");
+  const InputNode pts = j["points"];
+  if (!pts.isSequence() || pts.size() != 2) pts.fail("expected two points [on first body, on second body]");
+  jt.point_i = pointRef(m, jt.body_i, pts.at(0));
+  jt.point_j = pointRef(m, jt.body_j, pts.at(1));
+  const bool needs_axes = jt.type == JointType::Revolute || jt.type == JointType::Universal ||
+                          jt.type == JointType::Cylindrical || jt.type == JointType::Prismatic;
+  if (needs_axes) {
+    const InputNode ax = j["axes"];
+    if (!ax.isSequence() || ax.size() != 2) ax.fail("expected two axes [on first body, on second body]");
+    jt.axis_i = unitVector(ax.at(0));
+    jt.axis_j = unitVector(ax.at(1));
+  } else if (j.has("axes")) {
+    j["axes"].fail("a " + j["type"].asString() + " joint has no axes");
+  }
+  jt.enabled = j.flag("enabled", true);
+  if (j.has("locked") && jt.type != JointType::Revolute) j["locked"].fail("only revolute joints can be locked");
+  jt.locked = j.flag("locked", false);
+  if (j.has("initial_angle")) {
+    if (jt.type != JointType::Revolute) j["initial_angle"].fail("only revolute joints have an angle");
+    jt.initial_angle = j["initial_angle"].asDouble();
+  }
+  if (j.has("drive")) {
+    const InputNode d = j["drive"];
+    if (jt.type != JointType::Revolute) d.fail("only revolute joints can be driven");
+    if (jt.locked) d.fail("a driven joint cannot also be locked");
+    d.allowKeys({"angle0", "speed", "amplitude", "frequency", "phase"});
+    jt.drive.active = true;
+    jt.drive.angle0 = d.number("angle0", jt.initial_angle);
+    jt.drive.speed = d.number("speed", 0.0);
+    jt.drive.amplitude = d.number("amplitude", 0.0);
+    jt.drive.frequency = d.number("frequency", 0.0);
+    jt.drive.phase = d.number("phase", 0.0);
+    if (!j.has("initial_angle")) jt.initial_angle = jt.drive.angle(0.0);
+  }
+  return jt;
+}
+
+PiecewiseLinear parseTable(const InputNode& t) {
+  t.allowKeys({"angle", "value"});
+  PiecewiseLinear f;
+  const Eigen::VectorXd a = t["angle"].asVector(), v = t["value"].asVector();
+  if (a.size() != v.size())
+    t.fail("expected 'angle' and 'value' of the same length, got " + std::to_string(a.size()) + " and " +
+           std::to_string(v.size()));
+  if (a.size() < 1) t["angle"].fail("expected at least one point");
+  for (Eigen::Index k = 1; k < a.size(); ++k)
+    if (!(a[k] > a[k - 1])) t["angle"].fail("expected strictly increasing angles");
+  f.x.assign(a.data(), a.data() + a.size());
+  f.y.assign(v.data(), v.data() + v.size());
+  return f;
+}
+
+ForceElement parseForce(const Model& m, const InputNode& f, int index) {
+  const std::string type = f["type"].asString();
+  ForceElement fe;
+  fe.name = f.string("name", type + "#" + std::to_string(index));
+  fe.enabled = f.flag("enabled", true);
+  if (type == "gravity") {
+    f.allowKeys({"name", "type", "g", "enabled"});
+    fe.type = ForceType::Gravity;
+    fe.vector = vec3(f["g"]);
+  } else if (type == "rotational_spring_damper") {
+    f.allowKeys({"name", "type", "joint", "damping", "torque", "enabled"});
+    fe.type = ForceType::RotationalSpringDamper;
+    const InputNode jn = f["joint"];
+    fe.joint = m.jointIndex(jn.asString());
+    if (fe.joint < 0) jn.fail("unknown joint '" + jn.asString() + "'");
+    if (m.joints[fe.joint].type != JointType::Revolute)
+      jn.fail("expected a revolute joint, '" + jn.asString() + "' is not one");
+    fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
+    if (f.has("torque")) fe.torque = parseTable(f["torque"]);
+  } else if (type == "translational_spring_damper") {
+    f.allowKeys({"name", "type", "bodies", "points", "stiffness", "damping", "free_length", "enabled"});
+    fe.type = ForceType::TranslationalSpringDamper;
+    const InputNode b = f["bodies"];
+    if (!b.isSequence() || b.size() != 2) b.fail("expected two body names");
+    fe.body_i = bodyRef(m, b.at(0));
+    fe.body_j = bodyRef(m, b.at(1));
+    const InputNode p = f["points"];
+    if (!p.isSequence() || p.size() != 2) p.fail("expected two points");
+    fe.point_i = pointRef(m, fe.body_i, p.at(0));
+    fe.point_j = pointRef(m, fe.body_j, p.at(1));
+    fe.stiffness = f["stiffness"].asNonNegative();
+    fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
+    fe.free_length = f["free_length"].asNonNegative();
+  } else if (type == "force") {
+    f.allowKeys({"name", "type", "body", "point", "force", "enabled"});
+    fe.type = ForceType::ConstantForce;
+    fe.body_i = bodyRef(m, f["body"]);
+    fe.point_i = f.has("point") ? pointRef(m, fe.body_i, f["point"]) : m.bodies[fe.body_i].com;
+    fe.vector = vec3(f["force"]);
+  } else if (type == "torque") {
+    f.allowKeys({"name", "type", "body", "torque", "enabled"});
+    fe.type = ForceType::ConstantTorque;
+    fe.body_i = bodyRef(m, f["body"]);
+    fe.vector = vec3(f["torque"]);
+  } else {
+    const std::string hint =
+        closestMatch(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "force", "torque"});
+    f["type"].fail("unknown force type '" + type +
+                   "': expected gravity, rotational_spring_damper, translational_spring_damper, force or torque" +
+                   (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  }
+  return fe;
+}
+
+Event parseEvent(const Model& m, const InputNode& e) {
+  e.allowKeys({"time", "joint", "angle", "direction", "lock", "release", "enable", "disable"});
+  Event ev;
+  if (e.has("time") == e.has("joint"))
+    e.fail("expected either 'time' or 'joint' with 'angle' (a joint-angle crossing)");
+  if (e.has("time")) {
+    ev.time = e["time"].asNonNegative();
+  } else {
+    const InputNode jn = e["joint"];
+    ev.joint = m.jointIndex(jn.asString());
+    if (ev.joint < 0) jn.fail("unknown joint '" + jn.asString() + "'");
+    if (m.joints[ev.joint].type != JointType::Revolute) jn.fail("expected a revolute joint");
+    ev.angle = e["angle"].asDouble();
+    const std::string dir = e.string("direction", "any");
+    if (dir == "rising") ev.direction = 1;
+    else if (dir == "falling") ev.direction = -1;
+    else if (dir == "any") ev.direction = 0;
+    else e["direction"].fail("expected rising, falling or any, got '" + dir + "'");
+  }
+  auto names = [&](const char* key) {
+    std::vector<std::pair<std::string, InputNode>> out;
+    if (!e.has(key)) return out;
+    const InputNode l = e[key];
+    if (!l.isSequence()) l.fail("expected a list of names");
+    for (std::size_t k = 0; k < l.size(); ++k) out.emplace_back(l.at(k).asString(), l.at(k));
+    return out;
+  };
+  for (const auto& [name, node] : names("lock")) {
+    const int j = m.jointIndex(name);
+    if (j < 0 || m.joints[j].type != JointType::Revolute) node.fail("expected the name of a revolute joint, got '" + name + "'");
+    ev.lock.push_back(j);
+  }
+  for (const auto& [name, node] : names("release")) {
+    const int j = m.jointIndex(name);
+    if (j < 0 || m.joints[j].type != JointType::Revolute) node.fail("expected the name of a revolute joint, got '" + name + "'");
+    ev.release.push_back(j);
+  }
+  for (const char* key : {"enable", "disable"}) {
+    const bool on = std::string(key) == "enable";
+    for (const auto& [name, node] : names(key)) {
+      const int j = m.jointIndex(name), f = m.forceIndex(name);
+      if (j >= 0) (on ? ev.enable_joints : ev.disable_joints).push_back(j);
+      else if (f >= 0) (on ? ev.enable_forces : ev.disable_forces).push_back(f);
+      else node.fail("expected the name of a joint or force element, got '" + name + "'");
+    }
+  }
+  return ev;
+}
+
+void parseSimulation(const InputNode& s, Settings& st) {
+  s.allowKeys({"t_end", "output_step", "rtol", "atol", "integrator", "max_step", "penalty",
+               "stabilization_frequency", "stabilization_damping"});
+  st.t_end = s["t_end"].asPositive();
+  st.output_step = s.has("output_step") ? s["output_step"].asPositive() : st.t_end / 100.0;
+  if (s.has("rtol")) {
+    st.rtol = s["rtol"].asPositive();
+    if (st.rtol >= 0.1 || st.rtol < 1e-13) s["rtol"].fail("expected 1e-13 <= rtol < 0.1");
+  }
+  if (s.has("atol")) st.atol = s["atol"].asPositive();
+  if (s.has("max_step")) st.max_step = s["max_step"].asPositive();
+  if (s.has("penalty")) st.penalty = s["penalty"].asPositive();
+  if (s.has("stabilization_frequency")) st.omega = s["stabilization_frequency"].asNonNegative();
+  if (s.has("stabilization_damping")) st.xi = s["stabilization_damping"].asNonNegative();
+  const std::string integ = s.string("integrator", "auto");
+  if (integ == "auto") st.integrator = IntegratorKind::Auto;
+  else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;
+  else if (integ == "trbdf2") st.integrator = IntegratorKind::Bdf;
+  else s["integrator"].fail("expected auto, dopri5 or trbdf2, got '" + integ + "'");
+}
+
+template <class F>
+void forEachEntry(const InputNode& root, const char* key, F&& f) {
+  if (!root.has(key)) return;
+  const InputNode list = root[key];
+  if (list.isNull()) return;
+  if (!list.isSequence()) list.fail(std::string("expected a list of ") + key);
+  for (std::size_t k = 0; k < list.size(); ++k) f(list.at(k), static_cast<int>(k));
+}
+
+}  // namespace
+
+Model parseScene(const InputNode& root) {
+  root.allowKeys({"bodies", "joints", "forces", "events", "simulation", "materials", "laminates"});
+  Model m;
+  m.source = root.file();
+  std::set<std::string> names;
+  forEachEntry(root, "bodies", [&](const InputNode& b, int) {
+    Body body = parseBody(b);
+    if (!names.insert(body.name).second) b["name"].fail("duplicate name '" + body.name + "'");
+    m.bodies.push_back(body);
+  });
+  if (m.bodies.empty()) root.fail("expected at least one body under 'bodies'");
+  m.finalize();
+  if (m.nv == 0) root["bodies"].fail("every body is fixed: nothing to simulate");
+  forEachEntry(root, "joints", [&](const InputNode& j, int) {
+    Joint jt = parseJoint(m, j);
+    if (!names.insert(jt.name).second) j["name"].fail("duplicate name '" + jt.name + "'");
+    m.joints.push_back(jt);
+  });
+  forEachEntry(root, "forces", [&](const InputNode& f, int k) {
+    ForceElement fe = parseForce(m, f, k);
+    if (f.has("name") && !names.insert(fe.name).second) f["name"].fail("duplicate name '" + fe.name + "'");
+    m.forces.push_back(fe);
+  });
+  forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
+  parseSimulation(root["simulation"], m.settings);
+  if (m.settings.integrator == IntegratorKind::Auto) m.settings.integrator = chooseIntegrator(m);
+  return m;
+}
+
+Model loadScene(const std::string& path) { return parseScene(InputNode::loadFile(path)); }
+
+IntegratorKind chooseIntegrator(const Model& m) {
+  // Highest natural frequency a force element can introduce (spring stiffness
+  // over the lightest attached mass or inertia). Dormand-Prince's stability
+  // boundary is |h lambda| ~ 3.3: above ~2000 rad/s the explicit step would be
+  // set by stability (< 1.6 ms) rather than accuracy, where TR-BDF2 wins.
+  double wmax = 0.0;
+  auto lightest = [&](int i, int j, bool rotary) {
+    double v = std::numeric_limits<double>::infinity();
+    for (int k : {i, j}) {
+      const Body& b = m.bodies[k];
+      if (b.fixed) continue;
+      v = std::min(v, rotary ? b.inertia_com.diagonal().maxCoeff() : b.mass);
+    }
+    return v;
+  };
+  for (const ForceElement& f : m.forces) {
+    if (f.type == ForceType::TranslationalSpringDamper) {
+      wmax = std::max(wmax, std::sqrt(f.stiffness / lightest(f.body_i, f.body_j, false)));
+    } else if (f.type == ForceType::RotationalSpringDamper) {
+      double slope = 0.0;
+      for (std::size_t k = 1; k < f.torque.x.size(); ++k)
+        slope = std::max(slope, std::abs((f.torque.y[k] - f.torque.y[k - 1]) / (f.torque.x[k] - f.torque.x[k - 1])));
+      const Joint& jt = m.joints[f.joint];
+      wmax = std::max(wmax, std::sqrt(slope / lightest(jt.body_i, jt.body_j, true)));
+    }
+  }
+  return wmax > 2000.0 ? IntegratorKind::Bdf : IntegratorKind::DormandPrince;
+}
+
+}  // namespace fc::mbs

@@ -1,0 +1,203 @@
+#include "mbs-run/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <sstream>
+
+#include "common/progress.h"
+#include "common/rotations.h"
+#include "mbs-run/integrator.h"
+
+namespace fc::mbs {
+
+std::atomic<int> g_stop_signal{0};
+
+namespace {
+
+using Eigen::VectorXd;
+
+void record(System& sys, double t, VectorXd y, Results& R) {
+  const Model& m = sys.model();
+  for (const Body& b : m.bodies)
+    if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
+  std::vector<BodyPose> P;
+  sys.poses(y, P);
+  R.time.push_back(t);
+  for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+    R.position[k].push_back(P[k].r);
+    R.orientation[k].push_back(P[k].p);
+    R.velocity[k].push_back(P[k].rdot);
+    R.angular_velocity[k].push_back(P[k].A * P[k].w);
+  }
+  const std::vector<Eigen::Vector3d> reac = sys.reactions(t, y);
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    R.reaction[j].push_back(reac[j]);
+    R.joint_angle[j].push_back(m.joints[j].type == JointType::Revolute ? sys.jointAngle(int(j), y) : 0.0);
+  }
+  const Energies e = sys.energies(t, y);
+  R.kinetic.push_back(e.kinetic);
+  R.potential.push_back(e.potential);
+  R.strain.push_back(e.strain);
+  R.dissipated.push_back(e.dissipated);
+  R.applied_work.push_back(e.applied_work);
+  const double v = sys.constraintViolation(t, y);
+  R.violation.push_back(v);
+  R.max_violation = std::max(R.max_violation, v);
+  R.energy_scale = std::max({R.energy_scale, std::abs(e.kinetic), std::abs(e.potential), e.dissipated});
+}
+
+std::string describe(const Model& m, const Event& ev) {
+  std::ostringstream s;
+  auto names = [&](const char* what, const std::vector<int>& idx, bool joints) {
+    if (idx.empty()) return;
+    s << " " << what;
+    for (int i : idx) s << " " << (joints ? m.joints[i].name : m.forces[i].name);
+  };
+  names("lock", ev.lock, true);
+  names("release", ev.release, true);
+  names("enable", ev.enable_joints, true);
+  names("enable", ev.enable_forces, false);
+  names("disable", ev.disable_joints, true);
+  names("disable", ev.disable_forces, false);
+  return s.str();
+}
+
+void applyEvent(System& sys, const Event& ev, const VectorXd& y) {
+  for (int j : ev.enable_joints) sys.setJointEnabled(j, true, y);
+  for (int j : ev.disable_joints) sys.setJointEnabled(j, false, y);
+  for (int j : ev.lock) sys.setJointLocked(j, true, y);
+  for (int j : ev.release) sys.setJointLocked(j, false, y);
+  for (int f : ev.enable_forces) sys.setForceEnabled(f, true);
+  for (int f : ev.disable_forces) sys.setForceEnabled(f, false);
+}
+
+}  // namespace
+
+Results simulate(const Model& model, const RunOptions& options) {
+  const std::clock_t cpu0 = std::clock();
+  const Settings& st = model.settings;
+  System sys(model);
+  Results R;
+  R.position.resize(model.bodies.size());
+  R.orientation.resize(model.bodies.size());
+  R.velocity.resize(model.bodies.size());
+  R.angular_velocity.resize(model.bodies.size());
+  R.joint_angle.resize(model.joints.size());
+  R.reaction.resize(model.joints.size());
+
+  VectorXd y = sys.initialState();
+  // Capture held poses, make the initial state consistent, then measure the
+  // revolute angle offsets in the consistent configuration.
+  sys.initializeJoints(y);
+  sys.project(0.0, y);
+  sys.initializeJoints(y);
+
+  Tolerances tol;
+  tol.rtol = st.rtol;
+  tol.atol = st.atol > 0 ? st.atol : 1e-3 * st.rtol;
+  tol.max_step = st.max_step > 0 ? st.max_step : st.output_step;
+  tol.mask = VectorXd::Ones(sys.size());
+  tol.mask.tail(2).setZero();  // energy quadratures are diagnostics, not controlled
+  Rhs f = [&sys](double t, const VectorXd& yy, VectorXd& yd) { sys.derivative(t, yy, yd); };
+  std::unique_ptr<Integrator> integ =
+      st.integrator == IntegratorKind::Bdf ? makeTrBdf2(f, tol) : makeDormandPrince(f, tol);
+  R.integrator = integ->name();
+  integ->reset(0.0, y);
+
+  // Events: time events in time order; angle events armed until they fire.
+  std::vector<const Event*> timed, crossing;
+  for (const Event& e : model.events) (e.joint >= 0 ? crossing : timed).push_back(&e);
+  std::stable_sort(timed.begin(), timed.end(), [](const Event* a, const Event* b) { return a->time < b->time; });
+  std::size_t next_timed = 0;
+  std::vector<char> fired(crossing.size(), 0);
+
+  const double t_end = st.t_end;
+  long out_index = 0;
+  auto nextOutputTime = [&]() { return out_index * st.output_step; };
+  record(sys, 0.0, y, R);
+  ++out_index;
+  double e_ref = sys.energies(0.0, y).total();
+
+  fc::Progress progress("mbs-run", t_end, options.quiet);
+  double t = 0.0;
+  while (t < t_end) {
+    if (g_stop_signal.load()) {
+      R.status = "interrupted by signal " + std::to_string(g_stop_signal.load());
+      break;
+    }
+    while (next_timed < timed.size() && timed[next_timed]->time <= t) {
+      // Events at or before the current time (e.g. time 0) apply now.
+      applyEvent(sys, *timed[next_timed], y);
+      R.event_log.push_back("t=" + std::to_string(t) + ":" + describe(model, *timed[next_timed]));
+      ++next_timed;
+      sys.project(t, y);
+      integ->reset(t, y);
+      e_ref = sys.energies(t, y).total();
+    }
+    const double t_limit = next_timed < timed.size() ? std::min(t_end, timed[next_timed]->time) : t_end;
+    if (!integ->step(t_limit)) {
+      std::ostringstream s;
+      s << "solver failure: step size too small at t = " << t;
+      R.status = s.str();
+      break;
+    }
+    double t_new = integ->t();
+    VectorXd y_new = integ->y();
+    // Joint-angle crossings: sign change of angle - value over the step, located
+    // on the dense output by bisection to machine precision in time.
+    const Event* hit = nullptr;
+    for (std::size_t k = 0; k < crossing.size(); ++k) {
+      if (fired[k]) continue;
+      const Event& ev = *crossing[k];
+      const double g0 = sys.jointAngle(ev.joint, y) - ev.angle;
+      const double g1 = sys.jointAngle(ev.joint, y_new) - ev.angle;
+      const bool cross = (g0 < 0 && g1 >= 0 && ev.direction >= 0) || (g0 > 0 && g1 <= 0 && ev.direction <= 0);
+      if (!cross) continue;
+      double a = t, b = t_new;
+      for (int it = 0; it < 200 && b - a > 4e-16 * std::max(1.0, std::abs(b)); ++it) {
+        const double mid = 0.5 * (a + b);
+        const double gm = sys.jointAngle(ev.joint, integ->interpolate(mid)) - ev.angle;
+        if ((gm < 0) == (g0 < 0) && gm != 0.0) a = mid; else b = mid;
+      }
+      if (!hit || b < t_new) {
+        hit = &ev;
+        t_new = b;
+        fired[k] = 1;
+      }
+    }
+    if (hit) y_new = integ->interpolate(t_new);
+    while (out_index * st.output_step <= t_new + 1e-12 * std::max(1.0, t_new) && nextOutputTime() <= t_end + 1e-12) {
+      const double to = std::min(nextOutputTime(), t_new);
+      record(sys, to, integ->interpolate(to), R);
+      ++out_index;
+    }
+    // Energy balance over the event-free segment (sampled at steps).
+    const double e_now = sys.energies(t_new, y_new).total();
+    R.energy_balance_error = std::max(R.energy_balance_error, std::abs(e_now - e_ref));
+    t = t_new;
+    y = y_new;
+    sys.updateAngleReferences(y);
+    sys.project(t, y);
+    if (hit) {
+      applyEvent(sys, *hit, y);
+      R.event_log.push_back("t=" + std::to_string(t) + ": joint " + model.joints[hit->joint].name +
+                            " crossed " + std::to_string(hit->angle) + ";" + describe(model, *hit));
+      sys.project(t, y);
+    }
+    const bool at_time_event = next_timed < timed.size() && t >= timed[next_timed]->time;
+    integ->reset(t, y);
+    if (hit || at_time_event) e_ref = sys.energies(t, y).total();
+    progress.update(t, "steps " + std::to_string(integ->steps));
+  }
+  progress.finish();
+  R.t_reached = t;
+  R.steps = integ->steps;
+  R.rejected_steps = integ->rejected;
+  R.evaluations = sys.stats().evaluations;
+  R.max_al_iterations = sys.stats().max_al_iterations;
+  R.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  return R;
+}
+
+}  // namespace fc::mbs

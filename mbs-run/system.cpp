@@ -1,0 +1,388 @@
+#include "mbs-run/system.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/rotations.h"
+#include "mbs-run/rigid_body.h"
+
+namespace fc::mbs {
+
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+System::System(const Model& model) : model_(model) {
+  joints_.resize(model.joints.size());
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    joints_[j].enabled = model.joints[j].enabled;
+    joints_[j].locked = model.joints[j].locked;
+  }
+  force_on_.resize(model.forces.size());
+  for (std::size_t f = 0; f < model.forces.size(); ++f) force_on_[f] = model.forces[f].enabled;
+}
+
+VectorXd System::initialState() const {
+  VectorXd y = VectorXd::Zero(size());
+  for (const Body& b : model_.bodies) {
+    if (b.fixed) continue;
+    y.segment<3>(b.pos_index) = b.position;
+    y.segment<4>(b.pos_index + 3) = b.orientation.normalized();
+    const Eigen::Matrix3d A = fc::rotationMatrix(b.orientation.normalized());
+    y.segment<3>(model_.nq + b.dof_index) = b.velocity;
+    y.segment<3>(model_.nq + b.dof_index + 3) = A.transpose() * b.angular_velocity;
+  }
+  return y;
+}
+
+void System::poses(const VectorXd& y, std::vector<BodyPose>& out) const {
+  out.resize(model_.bodies.size());
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    BodyPose& P = out[k];
+    if (b.fixed) {
+      P.r = b.position;
+      P.p = b.orientation.normalized();
+      P.rdot.setZero();
+      P.w.setZero();
+      P.free = false;
+    } else {
+      P.r = y.segment<3>(b.pos_index);
+      P.p = y.segment<4>(b.pos_index + 3).normalized();
+      P.rdot = y.segment<3>(model_.nq + b.dof_index);
+      P.w = y.segment<3>(model_.nq + b.dof_index + 3);
+      P.free = true;
+    }
+    P.A = fc::rotationMatrix(P.p);
+  }
+}
+
+void System::initializeJoints(const VectorXd& y) {
+  poses(y, P_);
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    JointRuntime& rt = joints_[j];
+    const BodyPose &bi = P_[jt.body_i], &bj = P_[jt.body_j];
+    if (jt.type == JointType::Fixed) captureFixed(jt, rt, bi, bj);
+    if (jt.type == JointType::Prismatic || (jt.type == JointType::Revolute && rt.locked))
+      captureLock(jt, rt, bi, bj);
+    if (jt.type == JointType::Revolute) {
+      rt.angle_offset = jt.initial_angle - rawRevoluteAngle(jt, bi, bj);
+      rt.last_angle = jt.initial_angle;
+    }
+  }
+}
+
+double System::penalty() const {
+  double m = 0.0;
+  for (const Body& b : model_.bodies)
+    if (!b.fixed) m = std::max(m, std::max(b.mass, b.inertia_com.diagonal().maxCoeff()));
+  return model_.settings.penalty * std::max(m, 1e-12);
+}
+
+void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
+  int m = 0;
+  row_of_joint_.assign(model_.joints.size(), 0);
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    row_of_joint_[j] = m;
+    m += constraintCount(model_.joints[j], joints_[j]);
+  }
+  phi_.setZero(m);
+  phit_.setZero(m);
+  c_.setZero(m);
+  trip_.clear();
+  ConstraintRows rows;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (!joints_[j].enabled) continue;
+    jointConstraints(jt, joints_[j], P[jt.body_i], P[jt.body_j], t, rows);
+    const int r0 = row_of_joint_[j];
+    phi_.segment(r0, rows.size()) = rows.phi;
+    phit_.segment(r0, rows.size()) = rows.phit;
+    c_.segment(r0, rows.size()) = rows.c;
+    const Body &bi = model_.bodies[jt.body_i], &bj = model_.bodies[jt.body_j];
+    for (int r = 0; r < rows.size(); ++r)
+      for (int k = 0; k < 6; ++k) {
+        if (!bi.fixed) trip_.emplace_back(r0 + r, bi.dof_index + k, rows.Ji(r, k));
+        if (!bj.fixed) trip_.emplace_back(r0 + r, bj.dof_index + k, rows.Jj(r, k));
+      }
+  }
+  Phi_v_.resize(m, model_.nv);
+  Phi_v_.setFromTriplets(trip_.begin(), trip_.end());
+}
+
+void System::assembleMass(const std::vector<BodyPose>& P) {
+  trip_.clear();
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed) continue;
+    const Matrix6d Mb = rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A);
+    // All 36 entries, even zeros, so that the sparsity pattern never changes.
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) trip_.emplace_back(b.dof_index + r, b.dof_index + c, Mb(r, c));
+  }
+  M_.resize(model_.nv, model_.nv);
+  M_.setFromTriplets(trip_.begin(), trip_.end());
+}
+
+void System::factorize() {
+  // The symbolic analysis is kept while the pattern of M + a Phi^T Phi is the
+  // same; its signature is the pattern's size and a checksum of its indices.
+  long sig = Phi_v_.rows() * 1000003L + Phi_v_.nonZeros();
+  for (Eigen::Index k = 0; k < Phi_v_.outerSize() + 1; ++k)
+    sig = sig * 31 + Phi_v_.outerIndexPtr()[k];
+  const bool same = sig == pattern_signature_;
+  pattern_signature_ = sig;
+  solver_.factorize(M_, Phi_v_, penalty(), same);
+}
+
+void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q, double& dissipation,
+                           double& applied_power) const {
+  Q.setZero(model_.nv);
+  dissipation = 0.0;
+  applied_power = 0.0;
+  auto addForceAt = [&](int body, const Vector3d& s, const Vector3d& f) {
+    const Body& b = model_.bodies[body];
+    if (b.fixed) return;
+    Q.segment<3>(b.dof_index) += f;
+    Q.segment<3>(b.dof_index + 3) += s.cross(P[body].A.transpose() * f);
+  };
+  auto addTorque = [&](int body, const Vector3d& n) {
+    const Body& b = model_.bodies[body];
+    if (b.fixed) return;
+    Q.segment<3>(b.dof_index + 3) += P[body].A.transpose() * n;
+  };
+  for (std::size_t f = 0; f < model_.forces.size(); ++f) {
+    if (!force_on_[f]) continue;
+    const ForceElement& fe = model_.forces[f];
+    switch (fe.type) {
+      case ForceType::Gravity:
+        for (std::size_t k = 0; k < model_.bodies.size(); ++k)
+          addForceAt(static_cast<int>(k), model_.bodies[k].com, model_.bodies[k].mass * fe.vector);
+        break;
+      case ForceType::RotationalSpringDamper: {
+        const Joint& jt = model_.joints[fe.joint];
+        const BodyPose &bi = P[jt.body_i], &bj = P[jt.body_j];
+        const double th = revoluteAngle(jt, joints_[fe.joint], bi, bj);
+        const double thd = revoluteRate(jt, bi, bj);
+        const double M = fe.torque.value(th) + fe.damping * thd;
+        const Vector3d axis = bi.A * jt.axis_i.normalized();
+        addTorque(jt.body_i, M * axis);
+        addTorque(jt.body_j, -M * axis);
+        dissipation += fe.damping * thd * thd;
+        break;
+      }
+      case ForceType::TranslationalSpringDamper: {
+        const Vector3d xi = P[fe.body_i].r + P[fe.body_i].A * fe.point_i;
+        const Vector3d xj = P[fe.body_j].r + P[fe.body_j].A * fe.point_j;
+        const Vector3d vi = P[fe.body_i].rdot + P[fe.body_i].A * P[fe.body_i].w.cross(fe.point_i);
+        const Vector3d vj = P[fe.body_j].rdot + P[fe.body_j].A * P[fe.body_j].w.cross(fe.point_j);
+        const Vector3d d = xj - xi;
+        const double L = d.norm();
+        if (L <= 0.0) break;  // direction undefined; the force is continuous only for L > 0
+        const Vector3d e = d / L;
+        const double Ld = e.dot(vj - vi);
+        const double F = fe.stiffness * (L - fe.free_length) + fe.damping * Ld;
+        addForceAt(fe.body_i, fe.point_i, F * e);
+        addForceAt(fe.body_j, fe.point_j, -F * e);
+        dissipation += fe.damping * Ld * Ld;
+        break;
+      }
+      case ForceType::ConstantForce:
+        addForceAt(fe.body_i, fe.point_i, fe.vector);
+        break;
+      case ForceType::ConstantTorque:
+        addTorque(fe.body_i, fe.vector);
+        applied_power += fe.vector.dot(P[fe.body_i].A * P[fe.body_i].w);
+        break;
+    }
+  }
+}
+
+void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
+  ++stats_.evaluations;
+  const int nq = model_.nq, nv = model_.nv;
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  assembleMass(P_);
+  factorize();
+  VectorXd Q;
+  double dissipation, applied;
+  appliedForces(t, P_, Q, dissipation, applied);
+  const VectorXd v = y.segment(nq, nv);
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed) continue;
+    Q.segment<6>(b.dof_index) += rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P_[k].A, P_[k].w);
+  }
+  const Settings& s = model_.settings;
+  const VectorXd phidot = Phi_v_ * v + phit_;
+  const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
+  const AlResult r = solver_.accelerations(M_, Phi_v_, Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()), 30);
+  lambda_ = r.lambda;
+  stats_.al_iterations += r.iterations;
+  stats_.max_al_iterations = std::max(stats_.max_al_iterations, r.iterations);
+
+  ydot.setZero(size());
+  // Work of drives: the generalised force of the driven rows, -Phi_v^T lambda,
+  // does work at the rate -lambda . Phi_t on the system (Phi_v v = -Phi_t).
+  double drive_power = 0.0;
+  if (lambda_.size()) drive_power = lambda_.dot(phit_);
+  for (const Body& b : model_.bodies) {
+    if (b.fixed) continue;
+    const Eigen::Vector4d p = y.segment<4>(b.pos_index + 3);
+    ydot.segment<3>(b.pos_index) = y.segment<3>(nq + b.dof_index);
+    ydot.segment<4>(b.pos_index + 3) = 0.5 * fc::Lmatrix(p).transpose() * y.segment<3>(nq + b.dof_index + 3);
+  }
+  ydot.segment(nq, nv) = r.vdot;
+  ydot[nq + nv] = dissipation;
+  ydot[nq + nv + 1] = applied + drive_power;
+}
+
+double System::constraintViolation(double t, const VectorXd& y) {
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  return phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+double System::project(double t, VectorXd& y) {
+  const int nq = model_.nq, nv = model_.nv;
+  double scale = 1.0;
+  for (const Body& b : model_.bodies) scale = std::max(scale, b.position.norm());
+  const double tol = 1e-12 * scale;
+  VectorXd accumulated = VectorXd::Zero(nv);
+  double viol = 0.0;
+  for (int it = 0; it < 10; ++it) {
+    poses(y, P_);
+    assembleConstraints(t, P_);
+    viol = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
+    if (viol <= tol) break;
+    assembleMass(P_);
+    factorize();
+    const VectorXd dq = solver_.positionCorrection(M_, Phi_v_, phi_, accumulated, 1e-3 * tol, 20);
+    accumulated += dq;
+    for (const Body& b : model_.bodies) {
+      if (b.fixed) continue;
+      y.segment<3>(b.pos_index) += dq.segment<3>(b.dof_index);
+      // Rotation increments are in body axes: A_new = A exp(dtheta~).
+      const Vector3d dth = dq.segment<3>(b.dof_index + 3);
+      const double ang = dth.norm();
+      Eigen::Vector4d dp(1, 0, 0, 0);
+      if (ang > 0) dp = fc::eulerParametersFromAxisAngle(dth / ang, ang);
+      y.segment<4>(b.pos_index + 3) = fc::quatProduct(y.segment<4>(b.pos_index + 3), dp).normalized();
+    }
+  }
+  for (const Body& b : model_.bodies)
+    if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  viol = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
+  if (phi_.size()) {
+    assembleMass(P_);
+    factorize();
+    const VectorXd v0 = y.segment(nq, nv);
+    y.segment(nq, nv) = solver_.projectVelocities(M_, Phi_v_, v0, phit_, 1e-13 * (1.0 + v0.lpNorm<Eigen::Infinity>()), 20);
+  }
+  return viol;
+}
+
+Energies System::energies(double t, const VectorXd& y) const {
+  std::vector<BodyPose> P;
+  poses(y, P);
+  Energies e;
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed) continue;
+    e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);
+  }
+  for (std::size_t f = 0; f < model_.forces.size(); ++f) {
+    if (!force_on_[f]) continue;
+    const ForceElement& fe = model_.forces[f];
+    switch (fe.type) {
+      case ForceType::Gravity:
+        for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+          const Body& b = model_.bodies[k];
+          if (b.fixed) continue;
+          e.potential -= b.mass * fe.vector.dot(P[k].r + P[k].A * b.com);
+        }
+        break;
+      case ForceType::RotationalSpringDamper: {
+        const Joint& jt = model_.joints[fe.joint];
+        e.potential += fe.torque.integral(revoluteAngle(jt, joints_[fe.joint], P[jt.body_i], P[jt.body_j]));
+        break;
+      }
+      case ForceType::TranslationalSpringDamper: {
+        const Vector3d d = (P[fe.body_j].r + P[fe.body_j].A * fe.point_j) -
+                           (P[fe.body_i].r + P[fe.body_i].A * fe.point_i);
+        const double stretch = d.norm() - fe.free_length;
+        e.potential += 0.5 * fe.stiffness * stretch * stretch;
+        break;
+      }
+      case ForceType::ConstantForce:
+        if (!model_.bodies[fe.body_i].fixed)
+          e.potential -= fe.vector.dot(P[fe.body_i].r + P[fe.body_i].A * fe.point_i);
+        break;
+      case ForceType::ConstantTorque:
+        break;
+    }
+  }
+  e.dissipated = y[model_.nq + model_.nv];
+  e.applied_work = y[model_.nq + model_.nv + 1];
+  return e;
+}
+
+std::vector<Vector3d> System::reactions(double t, const VectorXd& y) {
+  VectorXd ydot;
+  derivative(t, y, ydot);  // leaves the multipliers of this state in lambda_
+  std::vector<Vector3d> out(model_.joints.size(), Vector3d::Zero());
+  ConstraintRows rows;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (!joints_[j].enabled) continue;
+    jointConstraints(jt, joints_[j], P_[jt.body_i], P_[jt.body_j], t, rows);
+    // Constraint force on body i: -Ji^T lambda; its first three entries are the
+    // global force.
+    const VectorXd lam = lambda_.segment(row_of_joint_[j], rows.size());
+    out[j] = -(rows.Ji.transpose() * lam).head<3>();
+  }
+  return out;
+}
+
+double System::jointAngle(int j, const VectorXd& y) const {
+  std::vector<BodyPose> P;
+  poses(y, P);
+  const Joint& jt = model_.joints[j];
+  return revoluteAngle(jt, joints_[j], P[jt.body_i], P[jt.body_j]);
+}
+
+void System::updateAngleReferences(const VectorXd& y) {
+  poses(y, P_);
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (jt.type != JointType::Revolute) continue;
+    joints_[j].last_angle = revoluteAngle(jt, joints_[j], P_[jt.body_i], P_[jt.body_j]);
+  }
+}
+
+void System::setJointEnabled(int j, bool on, const VectorXd& y) {
+  JointRuntime& rt = joints_[j];
+  if (on && !rt.enabled) {
+    poses(y, P_);
+    const Joint& jt = model_.joints[j];
+    if (jt.type == JointType::Fixed) captureFixed(jt, rt, P_[jt.body_i], P_[jt.body_j]);
+    if (jt.type == JointType::Prismatic || (jt.type == JointType::Revolute && rt.locked))
+      captureLock(jt, rt, P_[jt.body_i], P_[jt.body_j]);
+  }
+  rt.enabled = on;
+}
+
+void System::setJointLocked(int j, bool on, const VectorXd& y) {
+  JointRuntime& rt = joints_[j];
+  if (on && !rt.locked) {
+    poses(y, P_);
+    const Joint& jt = model_.joints[j];
+    captureLock(jt, rt, P_[jt.body_i], P_[jt.body_j]);
+  }
+  rt.locked = on;
+}
+
+}  // namespace fc::mbs

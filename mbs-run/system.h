@@ -1,0 +1,98 @@
+#pragma once
+// The evolving side of a simulation (the "Data" of the Model/Data split): the
+// run-time state of joints and force elements, the assembled matrices, and the
+// kernels that turn a state vector into its time derivative, project it onto
+// the constraints, and report energies and reactions.
+//
+// State vector y = [q (7 per free body: r, p), v (6 per free body: rdot,
+// omega'), E_dissipated, W_applied]; the last two are quadratures of the power
+// of dampers and of non-conservative applied loads (constant torques, drives),
+// so that the energy balance T + V + E_dissipated - W_applied = const can be
+// checked.
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <vector>
+
+#include "mbs-run/augmented_lagrangian.h"
+#include "mbs-run/constraints.h"
+#include "mbs-run/model.h"
+
+namespace fc::mbs {
+
+struct Energies {
+  double kinetic = 0, potential = 0, strain = 0, dissipated = 0, applied_work = 0;
+  double total() const { return kinetic + potential + strain + dissipated - applied_work; }
+};
+
+struct EvalStats {
+  long evaluations = 0;
+  long al_iterations = 0;
+  int max_al_iterations = 0;
+};
+
+class System {
+ public:
+  explicit System(const Model& model);
+
+  const Model& model() const { return model_; }
+  int size() const { return model_.nq + model_.nv + 2; }
+  // Initial state from the bodies' initial poses and velocities (not projected).
+  Eigen::VectorXd initialState() const;
+  // Captures fixed joints and locks, and sets the revolute angle offsets, in the
+  // configuration y. Call once at t = 0, after projecting.
+  void initializeJoints(const Eigen::VectorXd& y);
+
+  void poses(const Eigen::VectorXd& y, std::vector<BodyPose>& out) const;
+  // ydot = f(t, y).
+  void derivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot);
+  // Mass-orthogonal projection of positions then velocities; normalises the
+  // Euler parameters. Returns the largest position violation after projecting.
+  double project(double t, Eigen::VectorXd& y);
+  // Largest |Phi| over the active constraints.
+  double constraintViolation(double t, const Eigen::VectorXd& y);
+
+  Energies energies(double t, const Eigen::VectorXd& y) const;
+  // Reaction force on the first body of each joint (global); zero if disabled.
+  std::vector<Eigen::Vector3d> reactions(double t, const Eigen::VectorXd& y);
+  // Unwrapped angle of revolute joint j in configuration y.
+  double jointAngle(int j, const Eigen::VectorXd& y) const;
+  // Records the current revolute angles as the unwrapping references
+  // (after every accepted step, so unwrapping never skips a turn).
+  void updateAngleReferences(const Eigen::VectorXd& y);
+
+  // Event actions; each keeps the state consistent (captures poses as needed).
+  void setJointEnabled(int j, bool on, const Eigen::VectorXd& y);
+  void setJointLocked(int j, bool on, const Eigen::VectorXd& y);
+  void setForceEnabled(int f, bool on) { force_on_[f] = on; }
+  bool forceEnabled(int f) const { return force_on_[f]; }
+  const JointRuntime& jointRuntime(int j) const { return joints_[j]; }
+
+  const EvalStats& stats() const { return stats_; }
+
+ private:
+  // Assembles Phi_v (sparse), Phi, Phi_t, c for the active joints at (t, poses).
+  void assembleConstraints(double t, const std::vector<BodyPose>& P);
+  void assembleMass(const std::vector<BodyPose>& P);
+  // Applied generalised forces (without the quadratic-velocity terms) and the
+  // powers of dampers and non-conservative loads.
+  void appliedForces(double t, const std::vector<BodyPose>& P, Eigen::VectorXd& Q,
+                     double& dissipation, double& applied_power) const;
+  void factorize();
+  double penalty() const;
+
+  const Model& model_;
+  std::vector<JointRuntime> joints_;
+  std::vector<char> force_on_;
+  std::vector<int> row_of_joint_;
+  // Workspace.
+  std::vector<BodyPose> P_;
+  SparseMatrixd M_, Phi_v_;
+  Eigen::VectorXd phi_, phit_, c_, lambda_;
+  std::vector<Eigen::Triplet<double>> trip_;
+  AlSolver solver_;
+  long pattern_signature_ = -1;
+  EvalStats stats_;
+};
+
+}  // namespace fc::mbs

@@ -1,0 +1,193 @@
+// TR-BDF2, see integrator.h for the sources.
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "mbs-run/integrator.h"
+
+namespace fc::mbs {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+const double kGamma = 2.0 - std::sqrt(2.0);
+const double kD = kGamma / 2.0;          // diagonal coefficient of both stages
+const double kW = (1.0 - kD) / 2.0;      // = sqrt(2)/4
+// Third-order quadrature on the nodes 0, gamma, 1 (exact for quadratics): the
+// embedded solution whose difference from the TR-BDF2 result estimates the error.
+const double kB2 = 1.0 / (6.0 * kGamma * (1.0 - kGamma));
+const double kB3 = 0.5 - kB2 * kGamma;
+const double kB1 = 1.0 - kB2 - kB3;
+
+class TrBdf2 final : public Integrator {
+ public:
+  TrBdf2(Rhs f, const Tolerances& tol) : f_(std::move(f)), tol_(tol) {}
+
+  void reset(double t, const VectorXd& y) override {
+    t_ = t_old_ = t;
+    y_ = y;
+    y_old_ = y;
+    if (tol_.mask.size() != y.size()) tol_.mask = VectorXd::Ones(y.size());
+    f_(t_, y_, fn_);
+    fn_old_ = fn_;
+    if (h_ <= 0.0) {
+      const double fn = scaledNorm(fn_, y_);
+      h_ = fn > 1e-10 ? 0.01 / fn : 1e-4;
+      h_ = std::min(h_, tol_.max_step > 0 ? tol_.max_step : h_);
+    }
+    have_dense_ = false;
+  }
+
+  bool step(double t_limit) override {
+    const double span = t_limit - t_;
+    if (span <= 0.0) return false;
+    const double hmin = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
+    for (;;) {
+      double h = std::min(h_, span);
+      if (tol_.max_step > 0) h = std::min(h, tol_.max_step);
+      if (span - h < 0.01 * h) h = span;
+      if (h < hmin) return false;
+      if (!jac_valid_) computeJacobian();
+      if (h != h_lu_) {
+        lu_.compute(MatrixXd::Identity(y_.size(), y_.size()) - kD * h * J_);
+        h_lu_ = h;
+      }
+      // Stage 1: trapezoidal rule to t + gamma h.
+      VectorXd z = y_ + kGamma * h * fn_;
+      VectorXd fz;
+      if (!newton(t_ + kGamma * h, y_ + kD * h * fn_, h, z, fz)) {
+        if (!retry(h)) return false;
+        continue;
+      }
+      // Stage 2: y1 = y + h (w fn + w fz + d f1).
+      VectorXd y1 = y_ + h * (kW * fn_ + kW * fz + kD * fz);
+      VectorXd f1;
+      if (!newton(t_ + h, y_ + h * kW * (fn_ + fz), h, y1, f1)) {
+        if (!retry(h)) return false;
+        continue;
+      }
+      const VectorXd est = lu_.solve(h * ((kB1 - kW) * fn_ + (kB2 - kW) * fz + (kB3 - kD) * f1));
+      const double err = errorNorm(est, y_, y1);
+      const double fac = std::clamp(0.9 * std::pow(std::max(err, 1e-12), -1.0 / 3.0), 0.2, 5.0);
+      if (err <= 1.0 && std::isfinite(err)) {
+        t_old_ = t_;
+        y_old_ = y_;
+        fn_old_ = fn_;
+        h_last_ = h;
+        t_ = (h == span) ? t_limit : t_ + h;
+        y_ = y1;
+        fn_ = f1;
+        have_dense_ = true;
+        jac_fresh_ = false;  // J now belongs to an older state
+        h_ = h * fac;
+        ++steps;
+        return true;
+      }
+      ++rejected;
+      h_ = h * (std::isfinite(err) ? std::min(fac, 0.5) : 0.25);
+    }
+  }
+
+  double t() const override { return t_; }
+  double tPrevious() const override { return t_old_; }
+  const VectorXd& y() const override { return y_; }
+  // Cubic Hermite interpolation from the end values and slopes (third order,
+  // above the method's second).
+  VectorXd interpolate(double t) const override {
+    if (!have_dense_ || h_last_ <= 0.0) return y_;
+    const double s = (t - t_old_) / h_last_, s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * y_old_ + (s3 - 2 * s2 + s) * h_last_ * fn_old_ +
+           (-2 * s3 + 3 * s2) * y_ + (s3 - s2) * h_last_ * fn_;
+  }
+  std::string name() const override { return "trbdf2"; }
+
+ private:
+  // Solves x - d h f(t, x) = rhs by simplified Newton; x holds the predictor.
+  bool newton(double t, const VectorXd& rhs, double h, VectorXd& x, VectorXd& fx) {
+    double prev = 0.0;
+    fx.resize(x.size());
+    for (int it = 0; it < 10; ++it) {
+      f_(t, x, fx);
+      const VectorXd g = x - kD * h * fx - rhs;
+      const VectorXd dx = lu_.solve(-g);
+      x += dx;
+      const double nrm = scaledNorm(dx, x);
+      if (!std::isfinite(nrm)) return false;
+      // Converged well below the error tolerance (Hairer & Wanner, sec. IV.8).
+      if (nrm < 0.03) {
+        f_(t, x, fx);
+        return true;
+      }
+      if (it > 0 && nrm > 0.9 * prev) return false;  // diverging or too slow
+      prev = nrm;
+    }
+    return false;
+  }
+
+  bool retry(double h) {
+    ++rejected;
+    if (!jac_fresh_) {
+      jac_valid_ = false;  // a stale Jacobian is the usual culprit
+    } else {
+      h_ = 0.5 * h;
+    }
+    h_lu_ = -1.0;
+    return h > 1e-14;
+  }
+
+  void computeJacobian() {
+    const Eigen::Index n = y_.size();
+    J_.resize(n, n);
+    VectorXd yp = y_, fp(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double dy = std::sqrt(std::numeric_limits<double>::epsilon()) * std::max(1e-5, std::abs(y_[j]));
+      yp[j] = y_[j] + dy;
+      f_(t_, yp, fp);
+      J_.col(j) = (fp - fn_) / dy;
+      yp[j] = y_[j];
+    }
+    jac_valid_ = true;
+    jac_fresh_ = true;
+    h_lu_ = -1.0;
+  }
+
+  double scaledNorm(const VectorXd& e, const VectorXd& y) const {
+    double s = 0.0;
+    int n = 0;
+    for (Eigen::Index i = 0; i < e.size(); ++i) {
+      if (tol_.mask[i] == 0.0) continue;
+      const double r = e[i] / (tol_.atol + tol_.rtol * std::abs(y[i]));
+      s += r * r;
+      ++n;
+    }
+    return n ? std::sqrt(s / n) : 0.0;
+  }
+  double errorNorm(const VectorXd& e, const VectorXd& y0, const VectorXd& y1) const {
+    double s = 0.0;
+    int n = 0;
+    for (Eigen::Index i = 0; i < e.size(); ++i) {
+      if (tol_.mask[i] == 0.0) continue;
+      const double r = e[i] / (tol_.atol + tol_.rtol * std::max(std::abs(y0[i]), std::abs(y1[i])));
+      s += r * r;
+      ++n;
+    }
+    return n ? std::sqrt(s / n) : 0.0;
+  }
+
+  Rhs f_;
+  Tolerances tol_;
+  double t_ = 0, t_old_ = 0, h_ = 0, h_last_ = 0, h_lu_ = -1.0;
+  VectorXd y_, y_old_, fn_, fn_old_;
+  MatrixXd J_;
+  Eigen::PartialPivLU<MatrixXd> lu_;
+  bool jac_valid_ = false, jac_fresh_ = false, have_dense_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeTrBdf2(Rhs f, const Tolerances& tol) {
+  return std::make_unique<TrBdf2>(std::move(f), tol);
+}
+
+}  // namespace fc::mbs
