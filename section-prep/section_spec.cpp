@@ -1,0 +1,135 @@
+#include "section-prep/section_spec.h"
+
+#include <algorithm>
+#include <map>
+
+#include "common/files.h"
+#include "common/laminate.h"
+#include "common/materials.h"
+
+namespace fc::section {
+
+namespace {
+
+int materialIndex(SectionSpec& spec, std::map<std::string, int>& index, const Material& m) {
+  auto it = index.find(m.name);
+  if (it != index.end()) return it->second;
+  SectionMaterial sm;
+  sm.name = m.name;
+  sm.C = m.C;
+  sm.rho = m.rho;
+  spec.materials.push_back(sm);
+  return index[m.name] = static_cast<int>(spec.materials.size()) - 1;
+}
+
+std::vector<PlySpec> toPlies(SectionSpec& spec, std::map<std::string, int>& index,
+                             const Laminate& lam, const MaterialLibrary& lib) {
+  std::vector<PlySpec> out;
+  for (const auto& p : lam.plies)
+    out.push_back({materialIndex(spec, index, lib.at(p.material)), p.thickness, p.angle_deg});
+  return out;
+}
+
+// plies: [...] or laminate: NAME on `node`.
+void readLayup(SectionSpec& spec, std::map<std::string, int>& index, const InputNode& node,
+               const MaterialLibrary& lib, const LaminateLibrary& lams) {
+  if (node.has("plies")) {
+    spec.plies = toPlies(spec, index, readPlies(node["plies"], lib), lib);
+    return;
+  }
+  const InputNode n = node["laminate"];
+  auto it = lams.find(n.asString());
+  if (it == lams.end()) n.fail("unknown laminate '" + n.asString() + "'; define it under laminates:");
+  spec.plies = toPlies(spec, index, it->second, lib);
+}
+
+// wall: {material, thickness} | {plies: [...]} | {laminate: NAME}
+void readWall(SectionSpec& spec, std::map<std::string, int>& index, const InputNode& wall,
+              const MaterialLibrary& lib, const LaminateLibrary& lams) {
+  wall.allowKeys({"material", "thickness", "plies", "laminate"});
+  const int given = wall.has("material") + wall.has("plies") + wall.has("laminate");
+  if (given != 1)
+    wall.fail("expected exactly one of {material, thickness}, {plies: [...]} or {laminate: NAME}");
+  if (wall.has("material")) {
+    const Material& m = lookupMaterial(lib, wall["material"]);
+    spec.plies.push_back({materialIndex(spec, index, m), wall["thickness"].asPositive(), 0.0});
+  } else {
+    readLayup(spec, index, wall, lib, lams);
+  }
+}
+
+double totalThickness(const std::vector<PlySpec>& plies) {
+  double t = 0;
+  for (const auto& p : plies) t += p.thickness;
+  return t;
+}
+
+}  // namespace
+
+SectionSpec readSectionSpec(const InputNode& root) {
+  root.allowKeys({"materials", "laminates", "section"});
+  const MaterialLibrary lib = readMaterials(root["materials"]);
+  LaminateLibrary lams;
+  if (root.has("laminates")) lams = readLaminates(root["laminates"], lib);
+  const InputNode s = root["section"];
+  SectionSpec spec;
+  std::map<std::string, int> index;
+  const std::string shape = s["shape"].asString();
+  if (s.has("mesh_size")) spec.mesh_size = s["mesh_size"].asPositive();
+  if (shape == "solid_circle") {
+    s.allowKeys({"shape", "diameter", "material", "mesh_size"});
+    spec.shape = SectionSpec::Shape::SolidCircle;
+    spec.diameter = s["diameter"].asPositive();
+    spec.material = materialIndex(spec, index, lookupMaterial(lib, s["material"]));
+  } else if (shape == "tube") {
+    s.allowKeys({"shape", "outer_diameter", "wall", "mesh_size"});
+    spec.shape = SectionSpec::Shape::Tube;
+    spec.outer_diameter = s["outer_diameter"].asPositive();
+    readWall(spec, index, s["wall"], lib, lams);
+    if (totalThickness(spec.plies) >= 0.5 * spec.outer_diameter)
+      s["wall"].fail("the wall is as thick as the tube's radius or thicker; use shape: solid_circle");
+  } else if (shape == "rectangle") {
+    s.allowKeys({"shape", "width", "height", "material", "plies", "laminate", "mesh_size"});
+    spec.shape = SectionSpec::Shape::Rectangle;
+    spec.width = s["width"].asPositive();
+    spec.height = s["height"].asPositive();
+    if (s.has("material") == (s.has("plies") || s.has("laminate")))
+      s.fail("a rectangle takes either material: or plies: (stacked along x3)");
+    if (s.has("material")) {
+      spec.material = materialIndex(spec, index, lookupMaterial(lib, s["material"]));
+    } else {
+      readLayup(spec, index, s, lib, lams);
+    }
+  } else if (shape == "box") {
+    s.allowKeys({"shape", "width", "height", "wall", "mesh_size"});
+    spec.shape = SectionSpec::Shape::Box;
+    spec.width = s["width"].asPositive();
+    spec.height = s["height"].asPositive();
+    readWall(spec, index, s["wall"], lib, lams);
+    if (2 * totalThickness(spec.plies) >= std::min(spec.width, spec.height))
+      s["wall"].fail("the wall fills the box; expected a total thickness below half the smaller side");
+  } else if (shape == "mesh") {
+    s.allowKeys({"shape", "file", "mesh_size"});
+    spec.shape = SectionSpec::Shape::Mesh;
+    spec.mesh_file = resolveRelativeTo(s.file(), s["file"].asString());
+    for (const auto& [name, m] : lib) materialIndex(spec, index, m);
+  } else {
+    s["shape"].fail("unknown shape '" + shape +
+                    "'; expected solid_circle, tube, rectangle, box or mesh");
+  }
+  return spec;
+}
+
+double automaticMeshSize(const SectionSpec& spec) {
+  double L = 0;
+  switch (spec.shape) {
+    case SectionSpec::Shape::SolidCircle: L = spec.diameter; break;
+    case SectionSpec::Shape::Tube: L = spec.outer_diameter; break;
+    default: L = std::min(spec.width, spec.height); break;
+  }
+  double h = L / 20;
+  for (const auto& p : spec.plies) h = std::min(h, p.thickness);
+  return h;
+}
+
+}  // namespace fc::section

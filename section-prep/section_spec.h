@@ -1,0 +1,36 @@
+#pragma once
+// The `section:` block of a section-prep YAML input (contracts.md), checked and
+// resolved against the `materials:` block, before any meshing.
+#include <string>
+#include <vector>
+
+#include "common/input.h"
+#include "section-prep/section_mesh.h"
+
+namespace fc::section {
+
+struct PlySpec {
+  int material = 0;  // index into SectionSpec::materials
+  double thickness = 0.0;
+  double angle_deg = 0.0;  // theta3: fibre from x1, about the wall's outward normal
+};
+
+struct SectionSpec {
+  enum class Shape { SolidCircle, Tube, Rectangle, Box, Mesh };
+  Shape shape = Shape::SolidCircle;
+  double diameter = 0, outer_diameter = 0, width = 0, height = 0;
+  int material = -1;            // homogeneous section or wall
+  std::vector<PlySpec> plies;   // tube and box: outer surface inwards; rectangle: bottom up
+  double mesh_size = 0;         // element size; 0 = automatic
+  std::string mesh_file;        // shape mesh: absolute or relative to the YAML file
+  std::vector<SectionMaterial> materials;
+};
+
+// Reads `materials:` (and `laminates:` if present) and `section:` from the root.
+SectionSpec readSectionSpec(const InputNode& root);
+
+// The automatic element size: a twentieth of the section's smallest outer
+// dimension, and no larger than the thinnest ply so each ply gets elements.
+double automaticMeshSize(const SectionSpec& spec);
+
+}  // namespace fc::section
