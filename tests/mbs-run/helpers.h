@@ -1,0 +1,41 @@
+#pragma once
+// Shared helpers of the mbs-run tests: scenes from YAML text, and a classical
+// fixed-step RK4 for the independent minimal-coordinate reference solutions.
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+
+#include "common/input.h"
+#include "mbs-run/scene.h"
+
+namespace fc::mbs::test {
+
+inline Model sceneFromText(const std::string& yaml) {
+  return parseScene(fc::InputNode::loadString(yaml, "test.yaml"));
+}
+
+// y' = f(t, y), classical Runge-Kutta with n equal steps from t0 to t1.
+inline Eigen::VectorXd rk4(const std::function<Eigen::VectorXd(double, const Eigen::VectorXd&)>& f,
+                           Eigen::VectorXd y, double t0, double t1, int n) {
+  const double h = (t1 - t0) / n;
+  double t = t0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::VectorXd k1 = f(t, y);
+    const Eigen::VectorXd k2 = f(t + 0.5 * h, y + 0.5 * h * k1);
+    const Eigen::VectorXd k3 = f(t + 0.5 * h, y + 0.5 * h * k2);
+    const Eigen::VectorXd k4 = f(t + h, y + h * k3);
+    y += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    t += h;
+  }
+  return y;
+}
+
+// Index of the output row at time t (outputs are on a uniform grid).
+inline std::size_t rowAt(const std::vector<double>& time, double t) {
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < time.size(); ++k)
+    if (std::abs(time[k] - t) < std::abs(time[best] - t)) best = k;
+  return best;
+}
+
+}  // namespace fc::mbs::test
