@@ -225,7 +225,12 @@ SectionMesh meshSection(const SectionSpec& spec) {
   if (needs_meshing) {
     const double h = spec.mesh_size > 0 ? spec.mesh_size : automaticMeshSize(spec);
     if (spec.shape != SectionSpec::Shape::Mesh || spec.mesh_size > 0) {
+      // Sizes at the geometry's points drive gmsh's 1-D meshing; set them all.
+      gmsh::vectorpair points;
+      gmsh::model::getEntities(points, 0);
+      gmsh::model::mesh::setSize(points, h);
       gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+      gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
       gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 24);
     }
     gmsh::option::setNumber("Mesh.ElementOrder", 2);
