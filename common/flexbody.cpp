@@ -276,8 +276,7 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   writeArray(f, "/invariants/modal_products", {um, um, 3, 3}, prod.data());
   Eigen::MatrixXd jt = inv.rotary_modal;
   writeArray(f, "/invariants/rotary_modal", {um, 3}, jt.data());
-  Eigen::MatrixXd jtt = inv.rotary_modal_mass;  // symmetric: storage order irrelevant
-  if (jtt.rows() == 0) jtt.resize(0, 0);
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jtt = inv.rotary_modal_mass;
   writeArray(f, "/invariants/rotary_modal_mass", {um, um}, jtt.data());
   writer.commit();
 }
