@@ -3,15 +3,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/rotations.h"
+
 namespace fc::mbs {
 
 namespace {
-
-Eigen::Matrix3d tilde(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d t;
-  t << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return t;
-}
 
 // The w-dependent sums every term needs, evaluated once per call.
 struct Deformed {
@@ -57,7 +53,7 @@ Eigen::MatrixXd massMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& 
   const int nm = inv.n_modes;
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + nm, 6 + nm);
   M.block<3, 3>(0, 0) = inv.mass * Eigen::Matrix3d::Identity();
-  M.block<3, 3>(0, 3) = -A * tilde(d.S);
+  M.block<3, 3>(0, 3) = -A * skew(d.S);
   M.block<3, 3>(3, 3) = translationalInertia(d.E) + inv.rotary_inertia;
   if (nm > 0) {
     M.block(0, 6, 3, nm) = A * inv.modal_first_moment;
@@ -87,7 +83,7 @@ FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matri
   FlexibleInertia out;
   out.M = massMatrix(inv, A, d);
 
-  const Eigen::Matrix3d Wt = tilde(omega);
+  const Eigen::Matrix3d Wt = skew(omega);
   const Eigen::Matrix3d W2 = Wt * Wt;
   out.Qv = Eigen::VectorXd::Zero(6 + nm);
   Eigen::Vector3d s1wd = Eigen::Vector3d::Zero();  // sum m Phi wdot
