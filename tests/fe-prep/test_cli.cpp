@@ -1,0 +1,124 @@
+// The fe-prep executable: serial and `mpirun -n 2` give the same body, bad
+// inputs end with one message naming file, line and key, and no output file.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/h5io.h"
+
+namespace {
+
+std::string feprep() { return std::string(FLEXCOMP_BINARY_DIR) + "/fe-prep/fe-prep"; }
+
+std::string scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("flexcomp-feprep-cli-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs a shell command; returns its exit status, stdout+stderr in `out`.
+int run(const std::string& cmd, std::string& out, const std::string& dir) {
+  const std::string log = dir + "/log.txt";
+  const int rc = std::system((cmd + " > " + log + " 2>&1").c_str());
+  out = readText(log);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+const char* kPanel = R"(materials:
+  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
+body:
+  name: panel
+  shell:
+    rectangle: {length: 2.0, width: 1.3}
+    material: cfrp_iso
+    thickness: 0.002
+    element: dst
+    mesh: {size: 0.04}
+  interfaces: {S1: [-1.0, 0.65, 0.0705], S4: [-1.0, -0.65, 0.0705]}
+  reference: {pin: [S1, S4]}
+  modes: 10
+)";
+
+TEST(FePrepCli, MpirunTwoRanksGivesTheSerialFrequencies) {
+  const std::string dir = scratch("mpi");
+  writeText(dir + "/panel.yaml", kPanel);
+  std::string out;
+  ASSERT_EQ(run(feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/serial.h5", out, dir), 0) << out;
+  const std::string mpi = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -n 2 --oversubscribe ";
+  ASSERT_EQ(run(mpi + feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/mpi.h5", out, dir), 0) << out;
+  fc::H5File a(dir + "/serial.h5", fc::H5File::Mode::Read), b(dir + "/mpi.h5", fc::H5File::Mode::Read);
+  EXPECT_EQ(a.checkFormat("flexbody", 1), 1);
+  EXPECT_EQ(a.stringAttribute("/", "units"), "SI");
+  const Eigen::VectorXd fa = a.readVector("/modes/frequencies_hz"), fb = b.readVector("/modes/frequencies_hz");
+  ASSERT_EQ(fa.size(), 10);
+  ASSERT_EQ(fb.size(), 10);
+  // Both runs converge every eigenpair to a 1e-11 residual; eigenvalue errors are
+  // quadratic in it, so 1e-8 (the requirement) has a wide margin.
+  for (long i = 0; i < fa.size(); ++i) EXPECT_NEAR(fb(i) / fa(i), 1.0, 1e-8) << "mode " << i + 1;
+  EXPECT_EQ(a.readScalar("/inertia/mass"), b.readScalar("/inertia/mass"));
+  EXPECT_EQ(a.stringAttribute("/", "inputs_sha256"), b.stringAttribute("/", "inputs_sha256"));
+  std::filesystem::remove_all(dir);
+}
+
+struct BadInput {
+  const char* name;
+  const char* find;     // text of kPanel to replace
+  const char* replace;  // with this
+  const char* expect;   // expected in the message: "panel.yaml:LINE:" and the key
+};
+
+class FePrepBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(FePrepBadInput, FailsWithFileLineAndKeyAndWritesNothing) {
+  const BadInput& c = GetParam();
+  const std::string dir = scratch(c.name);
+  std::string yaml = kPanel;
+  const auto at = yaml.find(c.find);
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, std::string(c.find).size(), c.replace);
+  writeText(dir + "/panel.yaml", yaml);
+  std::string out;
+  const int rc = run(feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/out.h5", out, dir);
+  EXPECT_EQ(rc, 2) << out;
+  EXPECT_NE(out.find(std::string("panel.yaml:") + c.expect), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5"));
+  std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Errors, FePrepBadInput,
+    ::testing::Values(
+        BadInput{"element", "element: dst", "element: dsq", "9:14: body.shell.element: unknown element 'dsq'"},
+        BadInput{"thickness", "thickness: 0.002", "thickness: -0.002", "8:16: body.shell.thickness: expected a positive"},
+        BadInput{"set", "pin: [S1, S4]", "pin: [S1, S5]", "12:25: body.reference.pin[1]: unknown set 'S5'"},
+        BadInput{"outside", "S4: [-1.0, -0.65, 0.0705]", "S4: [-1.5, -0.65, 0.0705]",
+                 "11:46: body.interfaces.S4: the point's projection"},
+        BadInput{"material", "material: cfrp_iso", "material: cfrp_isso", "7:15: body.shell.material"},
+        BadInput{"key", "modes: 10", "mode: 10", "13:3: body.mode"},
+        BadInput{"yaml", "modes: 10", "modes: [10", "14:1: invalid YAML"}),
+    [](const ::testing::TestParamInfo<BadInput>& i) { return std::string(i.param.name); });
+
+TEST(FePrepCli, VersionAndHelp) {
+  const std::string dir = scratch("version");
+  std::string out;
+  EXPECT_EQ(run(feprep() + " --version", out, dir), 0);
+  EXPECT_NE(out.find("fe-prep"), std::string::npos);
+  EXPECT_EQ(run(feprep() + " --help", out, dir), 0);
+  EXPECT_NE(out.find("--output"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
