@@ -138,3 +138,61 @@ TEST_P(FreeFloating, ConservesEnergyAndMomentaToTheRk4Error) {
 INSTANTIATE_TEST_SUITE_P(UndampedAndDamped, FreeFloating, ::testing::Values(0.0, 0.05));
 
 }  // namespace
+
+namespace {
+
+// Sampled states of a free body every `every` steps.
+std::vector<VectorXd> history(const FreeBody& b, VectorXd y, double h, int steps, int every) {
+  std::vector<VectorXd> out;
+  for (int i = 0; i < steps; i += every) {
+    y = rk4(b, y, h, every);
+    out.push_back(y);
+  }
+  return out;
+}
+
+TEST(StiffFlexibleBody, ApproachesTheRigidBodyAsTheModesStiffen) {
+  // Started undeformed, a tumbling body deflects under its centrifugal and Euler
+  // loads by w ~ (omega/Omega)^2 (Omega: modal frequencies) and vibrates about that
+  // with velocity ~ Omega w. Its frame's attitude departs from the rigid body's by
+  // O((omega/Omega)^2) (the integral of the vibration is small), its angular
+  // velocity by O(omega/Omega) (the vibration's own wobble). Doubling every modal
+  // frequency must divide them by about 4 and 2; nm = 0 is the rigid reference.
+  const int nm = 3;
+  const double t_end = 2.0;
+  double prev_att = 0.0, prev_rate = 0.0;
+  for (double f0 : {20.0, 40.0}) {
+    const fc::FlexBody body = fc::testing::randomBody(8, nm, 77, 0.8, f0, 2 * f0);
+    const FreeBody flex{fc::computeInertiaInvariants(body), fc::mbs::modalProperties(body.eigenvalues, 0.0), nm};
+    const FreeBody rigid{flex.inv.truncated(0), fc::mbs::modalProperties(VectorXd(), 0.0), 0};
+    const double h = 0.05 / (2 * M_PI * 2 * f0);  // omega_max h = 0.05: RK4 error ~1e-8
+    const int steps = static_cast<int>(std::lround(t_end / h)), every = steps / 40;
+    VectorXd yf = initialState(nm);
+    yf.segment(7, nm).setZero();
+    yf.segment(7 + nm + 6, nm).setZero();
+    VectorXd yr(7 + 6 + 1);
+    yr << yf.head<7>(), yf.segment<6>(7 + nm), 0.0;
+    const auto hf = history(flex, yf, h, steps, every), hr = history(rigid, yr, h, steps, every);
+    double att = 0.0, rate = 0.0;
+    for (std::size_t i = 0; i < hf.size(); ++i) {
+      const Matrix3d Af = fc::rotationMatrix(hf[i].segment<4>(3)), Ar = fc::rotationMatrix(hr[i].segment<4>(3));
+      att = std::max(att, fc::rotationVector(Af * Ar.transpose()).norm());
+      const Vector3d wf = hf[i].segment<3>(7 + nm + 3), wr = hr[i].segment<3>(10);
+      rate = std::max(rate, (wf - wr).norm() / wr.norm());
+    }
+    const double omega = yr.segment<3>(10).norm(), ratio = omega / (2 * M_PI * f0);
+    std::printf("f0 %.0f Hz: attitude %.3e rad, rate %.3e, omega/Omega %.3e\n", f0, att, rate, ratio);
+    // Both departures carry an O(1-10) factor set by the body's shape and modes.
+    EXPECT_LT(att, 10 * ratio * ratio);
+    EXPECT_LT(rate, 10 * ratio);
+    if (prev_att > 0.0) {
+      // Asymptotic ratios 4 and 2 up to the next order, (omega/Omega) ~ 1 %.
+      EXPECT_NEAR(prev_att / att, 4.0, 0.4);
+      EXPECT_NEAR(prev_rate / rate, 2.0, 0.2);
+    }
+    prev_att = att;
+    prev_rate = rate;
+  }
+}
+
+}  // namespace
