@@ -281,10 +281,25 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   writer.commit();
 }
 
+namespace {
+
+int modeCount(const H5File& f) {
+  f.checkFormat("flexbody", kFormatVersion);
+  if (!f.exists("/modes/eigenvalues"))
+    throw H5Error(f.path() + ": missing dataset /modes/eigenvalues (flexbody/1 layout)");
+  const std::vector<hsize_t> shape = f.shape("/modes/eigenvalues");
+  if (shape.size() != 1) throw H5Error(f.path() + ": /modes/eigenvalues must be a vector, got shape " + dimsText(shape));
+  return static_cast<int>(shape[0]);
+}
+
+}  // namespace
+
+int flexBodyModeCount(const std::string& path) { return modeCount(H5File(path, H5File::Mode::Read)); }
+
 FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts parts) {
   H5File f(path, H5File::Mode::Read);
   FlexBodyFile out;
-  f.checkFormat("flexbody", kFormatVersion);
+  const int in_file = modeCount(f);
   out.provenance.format = f.stringAttribute("/", "format");
   if (f.hasAttribute("/", "tool")) out.provenance.tool = f.stringAttribute("/", "tool");
   if (f.hasAttribute("/", "version")) out.provenance.version = f.stringAttribute("/", "version");
@@ -293,9 +308,6 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
   FlexBody& b = out.body;
   if (f.hasAttribute("/", "name")) b.name = f.stringAttribute("/", "name");
 
-  if (!f.exists("/modes/eigenvalues")) throw H5Error(path + ": missing dataset /modes/eigenvalues (flexbody/1 layout)");
-  const std::vector<hsize_t> ev_shape = f.shape("/modes/eigenvalues");
-  const int in_file = ev_shape.empty() ? 0 : static_cast<int>(ev_shape[0]);
   out.modes_in_file = in_file;
   const int nm = n_modes < 0 ? in_file : n_modes;
   if (nm > in_file)

@@ -119,6 +119,9 @@ struct FlexBodyFile {
   int modes_in_file = 0;
 };
 
+// Number of modes a body file holds (checks the format first; errors as readFlexBody).
+int flexBodyModeCount(const std::string& path);
+
 // Reads the first n_modes modes (-1: all) of a body file, by hyperslab so that the
 // rest is never read. Errors (fc::H5Error) name the file and say what is wrong:
 // not a flexbody file, a newer format version, fewer modes than asked, a missing

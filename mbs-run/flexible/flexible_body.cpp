@@ -1,0 +1,76 @@
+#include "mbs-run/flexible/flexible_body.h"
+
+#include <stdexcept>
+
+#include "common/files.h"
+#include "common/h5io.h"
+
+namespace fc::mbs {
+
+const FlexInterface* FlexibleBodyData::findInterface(const std::string& name) const {
+  for (const auto& it : interfaces)
+    if (it.name == name) return &it;
+  return nullptr;
+}
+
+std::vector<std::string> FlexibleBodyData::interfaceNames() const {
+  std::vector<std::string> names;
+  for (const auto& it : interfaces) names.push_back(it.name);
+  return names;
+}
+
+Marker FlexibleBodyData::marker(const std::string& interface, const Eigen::Matrix3d& axes) const {
+  const FlexInterface* it = findInterface(interface);
+  if (!it) {
+    std::string known;
+    for (const auto& n : interfaceNames()) known += (known.empty() ? "" : ", ") + n;
+    throw std::out_of_range(file + " has no interface '" + interface + "' (it has: " +
+                            (known.empty() ? "none" : known) + ")");
+  }
+  return markerFromInterface(*it, modes, axes);
+}
+
+FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double damping_ratio) {
+  const FlexBodyFile f = readFlexBody(file, modes, FlexBodyParts::Dynamics);
+  FlexibleBodyData b;
+  b.file = file;
+  b.modes = f.invariants.n_modes;
+  b.damping_ratio = damping_ratio;
+  b.inertia = f.invariants;
+  b.modal = modalProperties(f.body.eigenvalues, damping_ratio);
+  b.frequencies_hz = f.body.frequencies_hz;
+  b.interfaces = f.body.interfaces;
+  return b;
+}
+
+FlexibleBodyData loadFlexibleBody(const InputNode& flexible) {
+  flexible.allowKeys({"file", "modes", "damping_ratio"});
+  const InputNode file_node = flexible["file"];
+  const std::string file = resolveRelativeTo(flexible.file(), file_node.asString());
+  int available = 0;
+  try {
+    available = flexBodyModeCount(file);
+  } catch (const H5Error& e) {
+    file_node.fail(std::string("expected a flexible body file written by fe-prep: ") + e.what());
+  }
+  int modes = available;
+  if (auto m = flexible.get("modes")) {
+    const long asked = m->asInt();
+    if (asked < 0) m->fail("expected a number of modes >= 0, got " + std::to_string(asked));
+    if (asked > available)
+      m->fail(file + " holds " + std::to_string(available) + " modes, " + std::to_string(asked) +
+              " asked (rebuild it with fe-prep 'modes: " + std::to_string(asked) + "' or ask for fewer)");
+    modes = static_cast<int>(asked);
+  }
+  double zeta = 0.0;
+  if (auto z = flexible.get("damping_ratio")) zeta = z->asNonNegative();
+  try {
+    return loadFlexibleBody(file, modes, zeta);
+  } catch (const H5Error& e) {
+    file_node.fail(e.what());
+  } catch (const std::invalid_argument& e) {
+    file_node.fail(e.what());
+  }
+}
+
+}  // namespace fc::mbs

@@ -1,0 +1,42 @@
+#pragma once
+// A flexible body of a scene, loaded from its body file: the scene's
+//   flexible: {file: panel.h5, modes: 14, damping_ratio: 0.01}
+// (file relative to the scene; modes: how many of the file's first modes, 0 = the
+// rigid body of the same inertia, default all; damping_ratio: modal, default 0).
+// Holds exactly what the dynamics needs: invariants, modal stiffness and damping,
+// interfaces (for markers), the body's rigid properties.
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "common/flexbody.h"
+#include "common/input.h"
+#include "mbs-run/flexible/marker.h"
+#include "mbs-run/flexible/modal.h"
+
+namespace fc::mbs {
+
+struct FlexibleBodyData {
+  std::string file;  // as resolved
+  int modes = 0;
+  double damping_ratio = 0.0;
+  InertiaInvariants inertia;
+  ModalProperties modal;
+  Eigen::VectorXd frequencies_hz;
+  std::vector<FlexInterface> interfaces;  // shapes restricted to the first `modes` modes
+
+  const FlexInterface* findInterface(const std::string& name) const;  // nullptr if absent
+  std::vector<std::string> interfaceNames() const;
+  // Marker at an interface; throws std::out_of_range listing the known names.
+  Marker marker(const std::string& interface,
+                const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity()) const;
+};
+
+// From the scene's `flexible:` block; every problem is an fc::InputError at the
+// offending key (unknown key, missing/unreadable/foreign file at `file`, more
+// modes than the file holds at `modes`, negative eigenvalue or damping).
+FlexibleBodyData loadFlexibleBody(const InputNode& flexible);
+// Direct form (no scene): errors as fc::H5Error / std::invalid_argument.
+FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double damping_ratio);
+
+}  // namespace fc::mbs
