@@ -1,0 +1,48 @@
+#include "fe-prep/elements/beam_element.h"
+
+#include <stdexcept>
+
+#include "fe-prep/elements/beam_flexibility.h"
+
+namespace fc::fe {
+
+BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                            const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                            const Matrix6d& Ms) {
+  const Eigen::Vector3d axis = xb - xa;
+  const double L = axis.norm();
+  if (!(L > 0.0)) throw std::invalid_argument("beam element: coincident end nodes");
+  const Eigen::Vector3d e1 = axis / L;
+  const Eigen::Vector3d p = section_x2 - section_x2.dot(e1) * e1;
+  // Within ~0.1 degree of the axis the orthogonalised x2 is dominated by roundoff.
+  if (p.norm() < 1e-3 * section_x2.norm() || !(section_x2.norm() > 0.0))
+    throw std::invalid_argument("beam element: section_x2 is parallel to the beam axis");
+  const Eigen::Vector3d e2 = p.normalized();
+  const Eigen::Vector3d e3 = e1.cross(e2);
+  Eigen::Matrix3d R;  // v_local = R v_body
+  R.row(0) = e1.transpose();
+  R.row(1) = e2.transpose();
+  R.row(2) = e3.transpose();
+  Matrix12d T = Matrix12d::Zero();
+  for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = R;
+
+  const UniformBeam beam(Ks, L);
+  BeamMatrices out;
+  out.K = T.transpose() * beam.stiffness() * T;
+  out.M = T.transpose() * beam.consistentMass(Ms) * T;
+
+  // Lumped: half the element at each end; the section's rotary inertia per
+  // length (lower-right block of Ms) times L/2, its diagonal in body axes.
+  const double mu = Ms(0, 0);
+  if (!(mu > 0.0)) throw std::invalid_argument("beam element: mass per length must be positive");
+  const Eigen::Matrix3d J = R.transpose() * Ms.block<3, 3>(3, 3) * R;
+  for (int n = 0; n < 2; ++n) {
+    for (int d = 0; d < 3; ++d) {
+      out.lumped(6 * n + d) = 0.5 * mu * L;
+      out.lumped(6 * n + 3 + d) = 0.5 * L * J(d, d);
+    }
+  }
+  return out;
+}
+
+}  // namespace fc::fe
