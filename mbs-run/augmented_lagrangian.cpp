@@ -16,30 +16,41 @@ void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, dou
 }
 
 namespace {
-// Generic multiplier iteration for  K x = b - Phi^T (mu + a g),  mu += a (Phi x + g):
-// converges to x with Phi x + g = 0 (in the least-squares sense if inconsistent).
-template <class Solver>
-Eigen::VectorXd multiplierIteration(const Solver& ldlt, const SparseMatrixd& Phi, double a,
-                                    const Eigen::VectorXd& b, const Eigen::VectorXd& g, double tol,
-                                    int max_it, Eigen::VectorXd* mu_out, int* its, double* res) {
+// Multiplier iteration for  K x = b - Phi^T (mu + a g),  mu += a (Phi x + g),
+// K = M + a Phi^T Phi, converging to M x = b - Phi^T mu with Phi x + g = 0 (in
+// the least-squares sense if the equations are inconsistent). Written in
+// correction form, x += K^-1 (b - M x - Phi^T (mu + a (Phi x + g))), so each
+// pass also refines away the rounding of the solve: K is ill-conditioned by
+// design (a large, light bodies' small inertias), and solving for x afresh
+// would leave errors of eps cond(K) |x| in every acceleration.
+Eigen::VectorXd multiplierIteration(const Eigen::SimplicialLDLT<SparseMatrixd>& ldlt, const SparseMatrixd& M,
+                                    const SparseMatrixd& Phi, double a, const Eigen::VectorXd& b,
+                                    const Eigen::VectorXd& g, double tol, int max_it, Eigen::VectorXd* mu_out,
+                                    int* its, double* res) {
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(Phi.rows());
   Eigen::VectorXd x = ldlt.solve(b - a * (Phi.transpose() * g));
-  double r_prev = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd e = Phi * x + g;
+  double r = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
+  double r_prev = std::numeric_limits<double>::infinity(), d_prev = r_prev;
   int k = 0;
-  double r = 0.0;
-  Eigen::VectorXd e;
-  for (;;) {
-    e = Phi * x + g;
-    r = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
+  while (k < max_it) {
     mu += a * e;
-    // Stop when satisfied, or when the residual stalls (inconsistent equations
-    // at a singular configuration: the least-squares part cannot vanish).
-    if (r <= tol || k >= max_it || r > 0.5 * r_prev) break;
-    r_prev = r;
-    x = ldlt.solve(b - Phi.transpose() * (mu + a * g));
+    const Eigen::VectorXd rhs = b - M * x - Phi.transpose() * (mu + a * e);
+    const Eigen::VectorXd dx = ldlt.solve(rhs);
+    x += dx;
+    e = Phi * x + g;
     ++k;
+    r = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
+    const double d = dx.lpNorm<Eigen::Infinity>();
+    const double xn = x.lpNorm<Eigen::Infinity>();
+    if (r <= tol && d <= 1e-13 * xn) break;
+    // Stalled: rounding level reached, or inconsistent equations at a singular
+    // configuration whose least-squares residual cannot vanish.
+    if (r > 0.5 * r_prev && d > 0.5 * d_prev) break;
+    r_prev = r;
+    d_prev = d;
   }
-  if (mu_out) *mu_out = mu;
+  if (mu_out) *mu_out = mu + a * e;
   if (its) *its = k;
   if (res) *res = r;
   return x;
@@ -50,7 +61,7 @@ AlResult AlSolver::accelerations(const SparseMatrixd& M, const SparseMatrixd& Ph
                                  const Eigen::VectorXd& Q, const Eigen::VectorXd& s, double tol,
                                  int max_iterations) const {
   AlResult r;
-  r.vdot = multiplierIteration(ldlt_, Phi_v, alpha_, Q, s, tol, max_iterations, &r.lambda,
+  r.vdot = multiplierIteration(ldlt_, M, Phi_v, alpha_, Q, s, tol, max_iterations, &r.lambda,
                                &r.iterations, &r.residual);
   return r;
 }
@@ -58,7 +69,7 @@ AlResult AlSolver::accelerations(const SparseMatrixd& M, const SparseMatrixd& Ph
 Eigen::VectorXd AlSolver::projectVelocities(const SparseMatrixd& M, const SparseMatrixd& Phi_v,
                                             const Eigen::VectorXd& v0, const Eigen::VectorXd& phit,
                                             double tol, int max_iterations) const {
-  return multiplierIteration(ldlt_, Phi_v, alpha_, M * v0, phit, tol, max_iterations, nullptr,
+  return multiplierIteration(ldlt_, M, Phi_v, alpha_, M * v0, phit, tol, max_iterations, nullptr,
                              nullptr, nullptr);
 }
 
@@ -67,7 +78,7 @@ Eigen::VectorXd AlSolver::positionCorrection(const SparseMatrixd& M, const Spars
                                              const Eigen::VectorXd& accumulated, double tol,
                                              int max_iterations) const {
   // Unknown dq; constraint Phi_v dq + phi = 0; objective (d + dq)^T M (d + dq).
-  return multiplierIteration(ldlt_, Phi_v, alpha_, -(M * accumulated), phi, tol, max_iterations,
+  return multiplierIteration(ldlt_, M, Phi_v, alpha_, -(M * accumulated), phi, tol, max_iterations,
                              nullptr, nullptr, nullptr);
 }
 

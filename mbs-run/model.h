@@ -99,10 +99,12 @@ struct Settings {
   double rtol = 1e-6;
   double atol = -1.0;            // < 0: rtol * 1e-3 (positions in m, angles in rad, ~1)
   IntegratorKind integrator = IntegratorKind::Auto;
-  double max_step = -1.0;        // < 0: output_step
+  double max_step = -1.0;        // < 0: 10 output steps
   // Augmented Lagrangian (Bayo & Ledesma 1996): penalty scale relative to the
-  // largest free-body mass, and the Baumgarte-like frequency and damping ratio.
-  double penalty = 1.0e7;
+  // largest free-body mass or inertia (1e6: see docs/mbs-run.md, larger values
+  // make the singular SAR toggle bounce instead of pass), and the Baumgarte-like
+  // frequency and damping ratio (Bayo & Ledesma: omega = 10, xi = 1).
+  double penalty = 1.0e6;
   double omega = 10.0, xi = 1.0;
 };
 

@@ -96,7 +96,9 @@ Results simulate(const Model& model, const RunOptions& options) {
   Tolerances tol;
   tol.rtol = st.rtol;
   tol.atol = st.atol > 0 ? st.atol : 1e-3 * st.rtol;
-  tol.max_step = st.max_step > 0 ? st.max_step : st.output_step;
+  // Default step limit: ten output intervals, so that a joint-angle event cannot
+  // hide two crossings inside one long step of a slow motion.
+  tol.max_step = st.max_step > 0 ? st.max_step : 10.0 * st.output_step;
   tol.mask = VectorXd::Ones(sys.size());
   tol.mask.tail(2).setZero();  // energy quadratures are diagnostics, not controlled
   Rhs f = [&sys](double t, const VectorXd& yy, VectorXd& yd) { sys.derivative(t, yy, yd); };
