@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "common/h5io.h"
-#include "common/version.h"
 
 namespace fc {
 
