@@ -1,6 +1,7 @@
 #include "mbs-run/simulation.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <ctime>
 #include <sstream>
@@ -45,6 +46,12 @@ void record(System& sys, double t, VectorXd y, Results& R) {
   R.violation.push_back(v);
   R.max_violation = std::max(R.max_violation, v);
   R.energy_scale = std::max({R.energy_scale, std::abs(e.kinetic), std::abs(e.potential), e.dissipated});
+}
+
+std::string timeLabel(double t) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "t=%.10g:", t);
+  return buf;
 }
 
 std::string describe(const Model& m, const Event& ev) {
@@ -131,7 +138,7 @@ Results simulate(const Model& model, const RunOptions& options) {
     while (next_timed < timed.size() && timed[next_timed]->time <= t) {
       // Events at or before the current time (e.g. time 0) apply now.
       applyEvent(sys, *timed[next_timed], y);
-      R.event_log.push_back("t=" + std::to_string(t) + ":" + describe(model, *timed[next_timed]));
+      R.event_log.push_back(timeLabel(t) + describe(model, *timed[next_timed]));
       ++next_timed;
       sys.project(t, y);
       integ->reset(t, y);
@@ -183,7 +190,7 @@ Results simulate(const Model& model, const RunOptions& options) {
     sys.project(t, y);
     if (hit) {
       applyEvent(sys, *hit, y);
-      R.event_log.push_back("t=" + std::to_string(t) + ": joint " + model.joints[hit->joint].name +
+      R.event_log.push_back(timeLabel(t) + " joint " + model.joints[hit->joint].name +
                             " crossed " + std::to_string(hit->angle) + ";" + describe(model, *hit));
       sys.project(t, y);
     }

@@ -1,0 +1,155 @@
+// Constraint kernels against finite differences: for every joint type, with
+// random poses and velocities,
+//   Phi_v v + Phi_t = d Phi / dt        (central difference along the motion)
+//   Phi_v vdot + c  = d^2 Phi / dt^2    (central difference of Phi_dot)
+// where the motion integrates r' = rdot, A' = A omega'~ exactly for constant
+// velocities and accelerations over the tiny difference step.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "common/rotations.h"
+#include "mbs-run/constraints.h"
+
+namespace fc::mbs {
+namespace {
+
+using Eigen::Vector3d;
+
+struct Motion {
+  Vector3d r0, rd, rdd, w0, wd;
+  Eigen::Vector4d p0;
+  // Pose at time t for constant rdd and omega' = w0 + wd t (second-order
+  // accurate attitude via the midpoint rotation of the exponential map).
+  BodyPose at(double t) const {
+    BodyPose b;
+    b.free = true;
+    b.r = r0 + rd * t + 0.5 * rdd * t * t;
+    b.rdot = rd + rdd * t;
+    b.w = w0 + wd * t;
+    // Rotation vector of the body-frame increment, to third order in t.
+    const Vector3d phi = w0 * t + 0.5 * wd * t * t + (1.0 / 12.0) * w0.cross(wd) * t * t * t;
+    b.A = fc::rotationMatrix(p0) * fc::expRotation(phi);
+    b.p = fc::eulerParametersFromMatrix(b.A);
+    return b;
+  }
+};
+
+Motion randomMotion(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto v = [&] { return Vector3d(u(rng), u(rng), u(rng)); };
+  Motion m{v(), v(), v(), v(), v(), Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()};
+  return m;
+}
+
+Joint makeJoint(JointType type, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Joint j;
+  j.type = type;
+  j.point_i = Vector3d(u(rng), u(rng), u(rng));
+  j.point_j = Vector3d(u(rng), u(rng), u(rng));
+  j.axis_i = Vector3d(u(rng), u(rng), u(rng)).normalized();
+  j.axis_j = Vector3d(u(rng), u(rng), u(rng)).normalized();
+  return j;
+}
+
+void checkJoint(Joint jt, bool locked, bool driven, unsigned seed) {
+  std::mt19937 rng(seed);
+  const Motion mi = randomMotion(rng), mj = randomMotion(rng);
+  JointRuntime rt;
+  rt.locked = locked;
+  if (driven) {
+    jt.drive.active = true;
+    jt.drive.angle0 = 0.3;
+    jt.drive.speed = 0.7;
+    jt.drive.amplitude = 0.2;
+    jt.drive.frequency = 1.3;
+  }
+  // Held poses captured at a different time than checked, so they are generic.
+  const BodyPose ci = mi.at(-0.3), cj = mj.at(-0.3);
+  captureFixed(jt, rt, ci, cj);
+  captureLock(jt, rt, ci, cj);
+  rt.angle_offset = 0.1;
+  const double t0 = 0.2, h = 1e-4;
+  ConstraintRows r0, rp, rm;
+  jointConstraints(jt, rt, mi.at(0), mj.at(0), t0, r0);
+  jointConstraints(jt, rt, mi.at(h), mj.at(h), t0 + h, rp);
+  jointConstraints(jt, rt, mi.at(-h), mj.at(-h), t0 - h, rm);
+  ASSERT_GT(r0.size(), 0);
+  Eigen::Matrix<double, 6, 1> vi, vj, ai, aj;
+  vi << mi.rd, mi.w0;
+  vj << mj.rd, mj.w0;
+  ai << mi.rdd, mi.wd;
+  aj << mj.rdd, mj.wd;
+  const Eigen::VectorXd phidot = r0.Ji * vi + r0.Jj * vj + r0.phit;
+  const Eigen::VectorXd phidot_fd = (rp.phi - rm.phi) / (2 * h);
+  const Eigen::VectorXd phiddot = r0.Ji * ai + r0.Jj * aj + r0.c;
+  const Eigen::VectorXd phiddot_fd = (rp.phi - 2 * r0.phi + rm.phi) / (h * h);
+  // Central differences: truncation h^2 ~ 1e-8 times third derivatives of
+  // order 1, rounding eps/h ~ 1e-12 (first) and eps/h^2 ~ 2e-8 (second).
+  EXPECT_LT((phidot - phidot_fd).lpNorm<Eigen::Infinity>(), 1e-7);
+  EXPECT_LT((phiddot - phiddot_fd).lpNorm<Eigen::Infinity>(), 1e-5);
+}
+
+TEST(Constraints, SphericalMatchesFiniteDifferences) {
+  std::mt19937 rng(1);
+  for (unsigned s = 0; s < 5; ++s) checkJoint(makeJoint(JointType::Spherical, rng), false, false, 10 + s);
+}
+TEST(Constraints, RevoluteFreeLockedDrivenMatchFiniteDifferences) {
+  std::mt19937 rng(2);
+  for (unsigned s = 0; s < 5; ++s) {
+    const Joint j = makeJoint(JointType::Revolute, rng);
+    checkJoint(j, false, false, 20 + s);
+    checkJoint(j, true, false, 30 + s);
+    checkJoint(j, false, true, 40 + s);
+  }
+}
+TEST(Constraints, FixedUniversalCylindricalPrismaticMatchFiniteDifferences) {
+  std::mt19937 rng(3);
+  for (JointType t : {JointType::Fixed, JointType::Universal, JointType::Cylindrical, JointType::Prismatic})
+    for (unsigned s = 0; s < 3; ++s) checkJoint(makeJoint(t, rng), false, false, 50 + s);
+}
+
+TEST(Constraints, CapturedJointsHoldTheCapturedPose) {
+  std::mt19937 rng(4);
+  const Motion mi = randomMotion(rng), mj = randomMotion(rng);
+  for (JointType t : {JointType::Fixed, JointType::Prismatic, JointType::Revolute}) {
+    Joint jt = makeJoint(t, rng);
+    if (t != JointType::Fixed) jt.point_j = jt.point_i;  // a consistent joint for the point rows
+    JointRuntime rt;
+    rt.locked = t == JointType::Revolute;
+    const BodyPose bi = mi.at(0.4), bj = mj.at(0.4);
+    captureFixed(jt, rt, bi, bj);
+    captureLock(jt, rt, bi, bj);
+    ConstraintRows r;
+    jointConstraints(jt, rt, bi, bj, 0.4, r);
+    // The rotational rows (and for the fixed joint, all rows) vanish at capture.
+    const int from = t == JointType::Fixed ? 0 : r.size() - 1;
+    EXPECT_LT(r.phi.tail(r.size() - from).cwiseAbs().maxCoeff(), 1e-14) << int(t);
+  }
+}
+
+TEST(Constraints, RevoluteAngleIsTheRelativeRotationAboutTheAxis) {
+  Joint jt;
+  jt.type = JointType::Revolute;
+  jt.axis_i = jt.axis_j = Vector3d(0.3, -0.5, 0.8).normalized();
+  BodyPose bi, bj;
+  bi.A = fc::expRotation(Vector3d(0.2, 0.1, -0.4));
+  for (double angle : {-3.0, -1.0, 0.0, 0.5, 2.5}) {
+    bj.A = bi.A * fc::expRotation(angle * jt.axis_i);
+    JointRuntime rt;
+    rt.last_angle = angle;  // unwrapping reference near the answer
+    rt.angle_offset = 0.0;
+    const double raw0 = rawRevoluteAngle(jt, bi, bi);  // 0 for the same pose
+    EXPECT_NEAR(raw0, 0.0, 1e-14);
+    EXPECT_NEAR(revoluteAngle(jt, rt, bi, bj), angle, 1e-12);
+  }
+  // Unwrapping: 3 full turns plus 0.5 rad reads continuously from a reference near it.
+  JointRuntime rt;
+  rt.last_angle = 6 * M_PI + 0.4;
+  bj.A = bi.A * fc::expRotation(0.5 * jt.axis_i);
+  EXPECT_NEAR(revoluteAngle(jt, rt, bi, bj), 6 * M_PI + 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace fc::mbs

@@ -1,0 +1,94 @@
+// Bad scenes end with one InputError naming the file, the line, the key and
+// what was expected (contracts.md, "Errors").
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "helpers.h"
+
+namespace fc::mbs::test {
+namespace {
+
+const std::string kHead = R"(bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: arm
+    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
+)";  // lines 1-4
+
+struct Expect {
+  int line;
+  std::string key, words;
+};
+
+void expectError(const std::string& yaml, const Expect& e) {
+  try {
+    sceneFromText(yaml);
+    FAIL() << "no error for:\n" << yaml;
+  } catch (const fc::InputError& err) {
+    EXPECT_EQ(err.file(), "test.yaml");
+    EXPECT_EQ(err.line(), e.line) << err.what();
+    EXPECT_NE(err.keyPath().find(e.key), std::string::npos) << err.what();
+    EXPECT_NE(std::string(err.what()).find(e.words), std::string::npos) << err.what();
+  }
+}
+
+const std::string kSim = "simulation: {t_end: 1.0}\n";
+
+TEST(SceneErrors, UnknownJointTypeWithSuggestion) {
+  expectError(kHead + "joints:\n  - {name: J, type: revolut, bodies: [ground, arm], points: [[0,0,0],[0,0,0]]}\n" + kSim,
+              {6, "joints[0].type", "did you mean 'revolute'"});
+}
+TEST(SceneErrors, UnknownBodyInJoint) {
+  expectError(kHead + "joints:\n  - {name: J, type: spherical, bodies: [ground, amr], points: [[0,0,0],[0,0,0]]}\n" + kSim,
+              {6, "joints[0].bodies[1]", "unknown body 'amr'"});
+}
+TEST(SceneErrors, MissingMass) {
+  expectError("bodies:\n  - name: b\n    rigid: {inertia: [[1,0,0],[0,1,0],[0,0,1]]}\n" + kSim,
+              {3, "bodies[0].rigid", "mass"});
+}
+TEST(SceneErrors, NegativeMass) {
+  expectError("bodies:\n  - name: b\n    rigid: {mass: -2, inertia: [[1,0,0],[0,1,0],[0,0,1]]}\n" + kSim,
+              {3, "bodies[0].rigid.mass", "positive"});
+}
+TEST(SceneErrors, NonUnitEulerParameters) {
+  expectError(kHead + "    orientation: [1, 1, 0, 0]\n" + kSim, {5, "bodies[1].orientation", "unit Euler parameters"});
+}
+TEST(SceneErrors, FlexibleBodiesNotYetSupported) {
+  expectError("bodies:\n  - name: p\n    flexible: {file: panel.h5, modes: 4}\n" + kSim,
+              {3, "bodies[0].flexible", "not yet supported"});
+}
+TEST(SceneErrors, InterfaceNameOnRigidBody) {
+  expectError(kHead + "joints:\n  - {name: J, type: spherical, bodies: [ground, arm], points: [[0,0,0], S1]}\n" + kSim,
+              {6, "joints[0].points[1]", "is rigid"});
+}
+TEST(SceneErrors, TorqueTableNotIncreasing) {
+  expectError(kHead +
+                  "joints:\n  - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]]}\n"
+                  "forces:\n  - {type: rotational_spring_damper, joint: R, torque: {angle: [0.2, -0.2], value: [1, 2]}}\n" +
+                  kSim,
+              {8, "forces[0].torque.angle", "increasing"});
+}
+TEST(SceneErrors, EventNamesUnknownElement) {
+  expectError(kHead + "events:\n  - {time: 1.0, enable: [nothing]}\n" + kSim, {6, "events[0].enable[0]", "'nothing'"});
+}
+TEST(SceneErrors, UnknownKeyWithSuggestion) {
+  expectError(kHead + "simulation: {t_end: 1.0, rtoll: 1e-6}\n", {5, "simulation", "rtol"});
+}
+TEST(SceneErrors, MissingSimulationBlock) {
+  expectError(kHead, {1, "simulation", "simulation"});
+}
+TEST(SceneErrors, BadIntegratorName) {
+  expectError(kHead + "simulation: {t_end: 1.0, integrator: rk4}\n", {5, "simulation.integrator", "dopri5"});
+}
+
+TEST(SceneErrors, SharedSarSceneParses) {
+  // The shared reference scene is valid input as distributed.
+  const Model m = loadScene(std::string(FLEXCOMP_SHARED_DIR) + "/reference/sar-rigid-scene.yaml");
+  EXPECT_EQ(m.bodies.size(), 12u);
+  EXPECT_EQ(m.joints.size(), 20u);
+  EXPECT_EQ(m.nv, 66);
+  EXPECT_EQ(m.settings.integrator, IntegratorKind::DormandPrince);
+}
+
+}  // namespace
+}  // namespace fc::mbs::test
