@@ -1,0 +1,106 @@
+// The results file holds the contract's layout ("results/1"), and a run
+// stopped by a signal still writes a valid file whose status says why.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "common/h5io.h"
+#include "helpers.h"
+#include "mbs-run/results.h"
+#include "mbs-run/simulation.h"
+
+namespace fc::mbs::test {
+namespace {
+
+const char* kScene = R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: arm
+    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
+    position: [0.5, 0, 0]
+joints:
+  - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]]}
+forces:
+  - {type: gravity, g: [0, 0, -9.81]}
+  - {name: damper, type: rotational_spring_damper, joint: R, damping: 0.2}
+simulation: {t_end: 1.0, output_step: 0.1, rtol: 1.0e-8}
+)";
+
+std::string tmpPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("mbs_test_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+TEST(ResultsFile, ContractLayout) {
+  const Model m = sceneFromText(kScene);
+  const Results r = simulate(m, {true});
+  const std::string path = tmpPath("layout.h5");
+  writeResults(path, m, r, "deadbeef");
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.checkFormat("results", 1), 1);
+  const long n = 11;  // 0, 0.1, ..., 1.0
+  EXPECT_EQ(f.shape("/time")[0], hsize_t(n));
+  for (const char* b : {"ground", "arm"}) {
+    const std::string p = std::string("/bodies/") + b;
+    EXPECT_EQ(f.shape(p + "/position"), (std::vector<hsize_t>{hsize_t(n), 3}));
+    EXPECT_EQ(f.shape(p + "/orientation"), (std::vector<hsize_t>{hsize_t(n), 4}));
+    EXPECT_EQ(f.shape(p + "/velocity"), (std::vector<hsize_t>{hsize_t(n), 3}));
+    EXPECT_EQ(f.shape(p + "/angular_velocity"), (std::vector<hsize_t>{hsize_t(n), 3}));
+  }
+  EXPECT_EQ(f.shape("/joints/R/angle")[0], hsize_t(n));
+  EXPECT_EQ(f.shape("/joints/R/reaction_force"), (std::vector<hsize_t>{hsize_t(n), 3}));
+  for (const char* e : {"kinetic", "potential", "strain", "dissipated"})
+    EXPECT_EQ(f.shape(std::string("/energy/") + e)[0], hsize_t(n));
+  EXPECT_EQ(f.shape("/diagnostics/constraint_violation")[0], hsize_t(n));
+  EXPECT_EQ(f.stringAttribute("/", "status"), "completed");
+  EXPECT_GT(f.doubleAttribute("/", "cpu_seconds"), 0.0);
+  // Energy balance from the file: T + V + dissipated is constant.
+  const Eigen::VectorXd T = f.readVector("/energy/kinetic"), V = f.readVector("/energy/potential"),
+                        D = f.readVector("/energy/dissipated");
+  EXPECT_GT(D[n - 1], 0.1);
+  EXPECT_LT(((T + V + D).array() - (T[0] + V[0] + D[0])).abs().maxCoeff(), 1e-6);
+  // A uniform rod released horizontally from rest: its centre of mass starts
+  // down at 3g/4, so the pivot carries m g / 4 (classical result). The file
+  // holds the force on the first body (ground): m g / 4 downwards. 1e-3 covers
+  // the rod's thickness (I_o larger by 2e-5 relative).
+  const Eigen::MatrixXd Rf = f.readMatrix("/joints/R/reaction_force");
+  EXPECT_NEAR(Rf(0, 2), -9.81 / 4, 1e-3);  // force on the first body (ground), downwards
+  f.close();
+  std::filesystem::remove(path);
+}
+
+TEST(ResultsFile, InterruptedRunIsValidAndSaysWhy) {
+  const Model m = sceneFromText(kScene);
+  g_stop_signal.store(15);
+  const Results r = simulate(m, {true});
+  g_stop_signal.store(0);
+  EXPECT_EQ(r.status, "interrupted by signal 15");
+  const std::string path = tmpPath("stopped.h5");
+  writeResults(path, m, r, "deadbeef");
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.stringAttribute("/", "status"), "interrupted by signal 15");
+  EXPECT_EQ(f.shape("/time")[0], 1u);  // the initial state was computed, nothing more
+  f.close();
+  std::filesystem::remove(path);
+}
+
+TEST(ResultsFile, CsvOfChosenChannels) {
+  const Model m = sceneFromText(kScene);
+  const Results r = simulate(m, {true});
+  const std::string path = tmpPath("chosen.csv");
+  writeCsv(path, m, r, {"joints/R/angle", "bodies/arm/position"});
+  std::FILE* fp = std::fopen(path.c_str(), "r");
+  ASSERT_NE(fp, nullptr);
+  char line[512];
+  ASSERT_NE(std::fgets(line, sizeof line, fp), nullptr);
+  EXPECT_STREQ(line, "time,joints/R/angle,bodies/arm/position_x,bodies/arm/position_y,bodies/arm/position_z\n");
+  int rows = 0;
+  while (std::fgets(line, sizeof line, fp)) ++rows;
+  std::fclose(fp);
+  EXPECT_EQ(rows, 11);
+  std::filesystem::remove(path);
+  EXPECT_THROW(writeCsv(path, m, r, {"joints/R/angel"}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fc::mbs::test
