@@ -29,7 +29,7 @@ using DenseN4 = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 //   2U = V'E V + 2 V'Dhe e + e'Dee e + 2 V'Dhl V' + 2 V''Dle e + V''Dll V'
 // (primes on V: d/dx1), e = [gamma11, kappa1, kappa2, kappa3].
 struct Assembled {
-  Eigen::SparseMatrix<double> E, Dhl, Dll;
+  Eigen::SparseMatrix<double> E;
   DenseN4 Dhe, Dle, HPsi, Psi;
   Eigen::Matrix4d Dee = Eigen::Matrix4d::Zero();
   double area = 0, mu = 0;
@@ -183,14 +183,27 @@ void combine(int ne, const Matrix6d& D, const ElementIntegrals& I, MatE& Ee, Mat
          I.m[5] * (s.G2.transpose() * DG3 + s.G3.transpose() * DG2);
 }
 
+// Products of the first-order energy matrices with the classical warping V0:
+// Dhl V0, Dhl^T V0 and V0^T Dll V0, formed element by element so that Dhl and
+// Dll are never stored (at 10^5 elements each would take ~150 MB).
+struct FirstOrderProducts {
+  DenseN4 HV, HtV;
+  Eigen::Matrix4d VLV = Eigen::Matrix4d::Zero();
+};
+
+// Without V0: assembles E, Dhe, Dle, Dee, the constraints and the inertia.
+// With V0: only fills `products`.
 Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
-                   const AnalysisOptions& opt) {
+                   const AnalysisOptions& opt, const DenseN4* V0 = nullptr,
+                   FirstOrderProducts* products = nullptr) {
   const long nn = static_cast<long>(mesh.nodes.size());
   const long ndof = 3 * nn;
   Assembled A;
-  A.E = pattern.makeMatrix();
-  A.Dhl = pattern.makeMatrix();
-  A.Dll = pattern.makeMatrix();
+  if (!V0) A.E = pattern.makeMatrix();
+  if (V0) {
+    products->HV = DenseN4::Zero(ndof, 4);
+    products->HtV = DenseN4::Zero(ndof, 4);
+  }
   A.Dhe = DenseN4::Zero(ndof, 4);
   A.Dle = DenseN4::Zero(ndof, 4);
   A.HPsi = DenseN4::Zero(ndof, 4);
@@ -207,7 +220,8 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
   const long n_el = static_cast<long>(mesh.elements.size());
   const long report_every = std::max<long>(1, n_el / 20);
   for (long ie = 0; ie < n_el; ++ie) {
-    if (opt.progress && ie % report_every == 0) opt.progress("assembly", double(ie) / n_el);
+    if (opt.progress && ie % report_every == 0)
+      opt.progress(V0 ? "first-order warping" : "assembly", double(ie) / n_el);
     const SectionElement& el = mesh.elements[ie];
     const SectionMaterial& mat = mesh.materials[el.material];
     const ElementNodes en = elementNodes(el);
@@ -275,19 +289,25 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
     if (!el.theta1_nodal) combine(ne, D, I, Ee, Hl, Ll, He, Le, A.Dee);
     A.second_mass(1, 0) = A.second_mass(0, 1);
 
+    if (V0) {
+      Mat4 Ve(nd, 4);
+      for (int a = 0; a < ne; ++a) Ve.middleRows(3 * a, 3) = V0->middleRows(3L * en.node[a], 3);
+      const Mat4 hv = Hl * Ve, htv = Hl.transpose() * Ve;
+      for (int a = 0; a < ne; ++a) {
+        products->HV.middleRows(3L * en.node[a], 3) += hv.middleRows(3 * a, 3);
+        products->HtV.middleRows(3L * en.node[a], 3) += htv.middleRows(3 * a, 3);
+      }
+      products->VLV.noalias() += Ve.transpose() * Ll * Ve;
+      continue;
+    }
     const auto slots = pattern.elementSlots(en.node.data(), ne);
     double* pE = A.E.valuePtr();
-    double* pH = A.Dhl.valuePtr();
-    double* pL = A.Dll.valuePtr();
     for (int a = 0; a < ne; ++a)
-      for (int b = 0; b < ne; ++b)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) {
-            const long pos = slots(a, b) + i + pattern.blockStride(en.node[b]) * j;
-            pE[pos] += Ee(3 * a + i, 3 * b + j);
-            pH[pos] += Hl(3 * a + i, 3 * b + j);
-            pL[pos] += Ll(3 * a + i, 3 * b + j);
-          }
+      for (int b = 0; b < ne; ++b) {
+        const long stride = pattern.blockStride(en.node[b]);
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) pE[slots(a, b) + i + stride * j] += Ee(3 * a + i, 3 * b + j);
+      }
     for (int a = 0; a < ne; ++a) {
       const long r0 = 3L * en.node[a];
       A.Dhe.middleRows(r0, 3) += He.middleRows(3 * a, 3);
@@ -304,7 +324,8 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
 // pinning four degrees of freedom, and the pinned solution is then projected.
 class ConstrainedSolver {
  public:
-  ConstrainedSolver(const Assembled& A, const std::vector<Eigen::Vector2d>& nodes,
+  // Pins E in place (E is not needed afterwards).
+  ConstrainedSolver(Assembled& A, const std::vector<Eigen::Vector2d>& nodes,
                     const std::vector<char>& used)
       : A_(A) {
     M4inv_ = (A.Psi.transpose() * A.HPsi).inverse();
@@ -328,12 +349,14 @@ class ConstrainedSolver {
     for (long i = 0; i < nn; ++i)
       if (!used[i]) for (int k = 0; k < 3; ++k) is_pinned[3 * i + k] = 1;
     mask_ = is_pinned;
-    Eigen::SparseMatrix<double> K = A.E;
+    Eigen::SparseMatrix<double>& K = A.E;
     for (long col = 0; col < K.outerSize(); ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
         if (is_pinned[it.row()] || is_pinned[it.col()])
           it.valueRef() = (it.row() == it.col()) ? 1.0 : 0.0;
     solver_.compute(K);
+    K.resize(0, 0);
+    K.data().squeeze();
     if (solver_.info() != Eigen::Success)
       throw std::runtime_error("the warping stiffness matrix could not be factorised: "
                                "check for elements with zero stiffness");
@@ -413,7 +436,7 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
   const SparsePattern pattern(nn, element_nodes);
   checkConnected(pattern, nn, used);
 
-  const Assembled A = assemble(mesh, pattern, opt);
+  Assembled A = assemble(mesh, pattern, opt);
   SectionProperties P;
   P.n_nodes = std::count(used.begin(), used.end(), 1);
   P.n_elements = static_cast<long>(mesh.elements.size());
@@ -440,11 +463,13 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
     //   E V1hat = (Dhl^T - Dhl) V0 + Dle,
     // energy 2U = e'A e + 2 e'B e' + e''C e' with
     //   B = (Dhl^T V0 + Dle)^T V0,  C = V0^T Dll V0 + V1^T (Dhl^T V0 + Dhl V0 + Dle).
-    const DenseN4 T1 = A.Dhl.transpose() * V0 + A.Dle;
-    const DenseN4 T2 = A.Dhl * V0;
+    FirstOrderProducts fp;
+    assemble(mesh, pattern, opt, &V0, &fp);
+    const DenseN4 T1 = fp.HtV + A.Dle;
+    const DenseN4& T2 = fp.HV;
     const DenseN4 V1 = solver.solve(T1 - T2);
     const Eigen::Matrix4d B = T1.transpose() * V0;
-    Eigen::Matrix4d C = V0.transpose() * (A.Dll * V0) + V1.transpose() * (T2 + T1);
+    Eigen::Matrix4d C = fp.VLV + V1.transpose() * (T2 + T1);
     C = 0.5 * (C + C.transpose()).eval();
     // Equivalence with the Timoshenko energy through the equilibrium equations
     // of the unloaded beam, e' = K^-1 P F (Yu et al. 2002, eqs. 40-52).
