@@ -71,7 +71,13 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
     shell.rectangle = false;
     shell.geo_file = resolveRelativeTo(s.file(), mesh["file"].asString());
-    if (readTextFile(shell.geo_file).empty()) mesh["file"].fail("mesh file '" + shell.geo_file + "' is empty");
+    try {
+      if (readTextFile(shell.geo_file).empty()) mesh["file"].fail("mesh file '" + shell.geo_file + "' is empty");
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception&) {
+      mesh["file"].fail("cannot read mesh file '" + shell.geo_file + "'; expected a gmsh .geo or .msh file");
+    }
     body.input_files.push_back(shell.geo_file);
     if (shell.triangles > 0) mesh["triangles"].fail("a triangle count applies to rectangles; use size: with a mesh file");
   } else {
