@@ -203,15 +203,6 @@ InertiaInvariants rigidInvariants(double mass, const Eigen::Vector3d& c, const E
   return inv;
 }
 
-InertiaInvariants withRigidProperties(const InertiaInvariants& inv, double mass, const Eigen::Vector3d& c,
-                                      const Eigen::Matrix3d& J) {
-  InertiaInvariants out = inv;
-  out.mass = mass;
-  out.first_moment = mass * c;
-  out.rotary_inertia = J - (inv.second_moment.trace() * Eigen::Matrix3d::Identity() - inv.second_moment);
-  return out;
-}
-
 void setRigidPropertiesFromLumpedMasses(FlexBody& body) {
   FlexBody rigid = body;
   rigid.shapes.resize(6 * body.nodeCount(), 0);

@@ -97,17 +97,6 @@ InertiaInvariants computeInertiaInvariants(const FlexBody& body, int n_modes = -
 InertiaInvariants rigidInvariants(double mass, const Eigen::Vector3d& center_of_mass,
                                   const Eigen::Matrix3d& inertia_about_com);
 
-// The invariants with their rigid part replaced by a body's exact rigid properties
-// (fe-prep's /inertia/: mass, centre of mass, inertia about the origin), the modal
-// part kept. On coarse meshes the lumped second moments can be several per cent
-// off the exact plate's (the 86-triangle SAR panel: up to 8 %), which would make
-// `modes: 0` a different rigid body. Only the sum tr(E0) I - E0 + Jr enters the
-// dynamics, so the difference is put into Jr: exact for the undeformed body, the
-// w-dependent terms unchanged.
-InertiaInvariants withRigidProperties(const InertiaInvariants& inv, double mass,
-                                      const Eigen::Vector3d& center_of_mass,
-                                      const Eigen::Matrix3d& inertia_about_origin);
-
 // Sets body.mass, center_of_mass and inertia_tensor from the lumped nodal masses.
 void setRigidPropertiesFromLumpedMasses(FlexBody& body);
 

@@ -36,7 +36,7 @@ FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double dam
   b.file = file;
   b.modes = f.invariants.n_modes;
   b.damping_ratio = damping_ratio;
-  b.inertia = withRigidProperties(f.invariants, f.body.mass, f.body.center_of_mass, f.body.inertia_tensor);
+  b.inertia = f.invariants;
   b.modal = modalProperties(f.body.eigenvalues, damping_ratio);
   b.frequencies_hz = f.body.frequencies_hz;
   b.interfaces = f.body.interfaces;

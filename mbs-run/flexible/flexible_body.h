@@ -4,9 +4,7 @@
 // (file relative to the scene; modes: how many of the file's first modes, 0 = the
 // rigid body of the same inertia, default all; damping_ratio: modal, default 0).
 // Holds exactly what the dynamics needs: invariants, modal stiffness and damping,
-// interfaces (for markers). The invariants' rigid part is the file's exact
-// /inertia/ (fc::withRigidProperties), so `modes: 0` is the rigid body of the
-// body's mass, centre of mass and inertia.
+// interfaces (for markers), the body's rigid properties.
 #include <Eigen/Dense>
 #include <string>
 #include <vector>

@@ -125,23 +125,6 @@ TEST(FlexBodyInvariants, ModalInvariantsMatchTheMatrixForm) {
   EXPECT_LT((inv.rotary_modal_mass - Xr.transpose() * Jr * Xr).norm(), tol);
 }
 
-TEST(FlexBodyInvariants, ExactRigidPropertiesReplaceTheLumpedOnes) {
-  const fc::FlexBody body = fc::testing::randomBody(6, 3, 5);
-  const fc::InertiaInvariants lumped = fc::computeInertiaInvariants(body);
-  const Vector3d c(0.1, -0.3, 0.2);
-  Matrix3d J;
-  J << 5.0, 0.2, -0.1, 0.2, 6.0, 0.3, -0.1, 0.3, 7.0;
-  const fc::InertiaInvariants exact = fc::withRigidProperties(lumped, 9.5, c, J);
-  EXPECT_EQ(exact.mass, 9.5);
-  EXPECT_LT((exact.centerOfMass() - c).norm(), 1e-15);
-  EXPECT_LT((exact.inertiaAboutOrigin() - J).norm(), 1e-13);
-  // The modal part is untouched.
-  EXPECT_EQ(exact.modal_first_moment, lumped.modal_first_moment);
-  EXPECT_EQ(exact.modal_second_moment, lumped.modal_second_moment);
-  EXPECT_EQ(exact.rotary_modal, lumped.rotary_modal);
-  EXPECT_EQ(exact.modalMass(), lumped.modalMass());
-}
-
 void expectSameInvariants(const fc::InertiaInvariants& a, const fc::InertiaInvariants& b, double tol) {
   ASSERT_EQ(a.n_modes, b.n_modes);
   EXPECT_NEAR(a.mass, b.mass, tol);

@@ -7,9 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "common/rotations.h"
 #include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/flexible/flexible_inertia.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {
@@ -57,26 +55,6 @@ TEST_F(FlexibleScene, LoadsTheFirstModesRelativeToTheScene) {
   // Defaults: all modes, no damping; modes: 0 is the rigid body.
   EXPECT_EQ(fc::mbs::loadFlexibleBody(block("{file: panel.h5}")).modes, 5);
   EXPECT_EQ(fc::mbs::loadFlexibleBody(block("{file: panel.h5, modes: 0}")).inertia.n_modes, 0);
-}
-
-TEST_F(FlexibleScene, RigidPartIsTheFilesExactInertia) {
-  // fe-prep writes the exact rigid properties beside the lumped masses; with
-  // modes: 0 the body must be the rigid body of exactly those.
-  fc::FlexBody b = body;
-  b.mass = 11.0;
-  b.center_of_mass = Eigen::Vector3d(0.05, 0.1, -0.02);
-  b.inertia_tensor << 3.0, 0.1, 0.0, 0.1, 4.0, -0.2, 0.0, -0.2, 5.0;
-  fc::writeFlexBody((dir / "exact.h5").string(), b, fc::computeInertiaInvariants(b), fc::Provenance{});
-  const auto loaded = fc::mbs::loadFlexibleBody(block("{file: exact.h5, modes: 0}"));
-  const Eigen::Matrix3d ct = fc::skew(b.center_of_mass);
-  const fc::InertiaInvariants rigid =
-      fc::rigidInvariants(b.mass, b.center_of_mass, b.inertia_tensor + b.mass * ct * ct);
-  const Eigen::Matrix3d A = fc::expRotation(Eigen::Vector3d(0.2, 0.5, -0.7));
-  const Eigen::Vector3d om(1.0, -2.0, 0.5);
-  const auto x = fc::mbs::flexibleInertia(loaded.inertia, A, Eigen::VectorXd(), Eigen::VectorXd(), om);
-  const auto y = fc::mbs::flexibleInertia(rigid, A, Eigen::VectorXd(), Eigen::VectorXd(), om);
-  EXPECT_LT((x.M - y.M).norm(), 1e-12 * y.M.norm());
-  EXPECT_LT((x.Qv - y.Qv).norm(), 1e-12 * y.Qv.norm());
 }
 
 TEST_F(FlexibleScene, ErrorsNameTheSceneKey) {

@@ -61,6 +61,19 @@ TEST(FlexibleInertia, MassMatrixIsTheHessianOfTheNodalKineticEnergy) {
   }
 }
 
+TEST(FlexibleInertia, MassMatrixIsPositiveDefiniteAtLargeDeformation) {
+  // All terms come from one lumped mass, so v^T M v = 2 T is a sum of squares: M
+  // stays positive definite whatever w (here deformations of the body's own size).
+  const int nm = 6;
+  const fc::FlexBody body = randomBody(10, nm, 19);
+  const fc::InertiaInvariants inv = fc::computeInertiaInvariants(body);
+  for (unsigned trial = 0; trial < 5; ++trial) {
+    const State s = randomState(nm, 300 + trial);
+    const Eigen::SelfAdjointEigenSolver<MatrixXd> es(fc::mbs::flexibleMassMatrix(inv, s.A, 3.0 * s.w));
+    EXPECT_GT(es.eigenvalues().minCoeff(), 0.0) << "trial " << trial;
+  }
+}
+
 TEST(FlexibleInertia, ModalMassIsIdentityForMassNormalisedModes) {
   const int nm = 4;
   const fc::FlexBody body = randomBody(7, nm, 3);

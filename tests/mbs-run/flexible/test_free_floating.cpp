@@ -135,37 +135,6 @@ TEST_P(FreeFloating, ConservesEnergyAndMomentaToTheRk4Error) {
               zeta, coarse.energy, coarse.L, coarse.H, fine.energy, fine.L, fine.H);
 }
 
-TEST(FreeFloatingExactInertia, ConservesWithTheRigidPartCorrected) {
-  // With the rigid part replaced by exact properties (fc::withRigidProperties, as
-  // mbs-run loads body files) T is no longer a nodal sum, but still a Lagrangian
-  // invariant under rigid motions: energy and momenta, measured with the kernel's
-  // own T, L, H (checked against nodal sums in test_flexible_inertia.cpp), must
-  // still be conserved to the RK4 error (bounds as above).
-  const int nm = 4;
-  const fc::FlexBody body = fc::testing::randomBody(8, nm, 31, 0.8, 0.5, 1.5);
-  const fc::InertiaInvariants lumped = fc::computeInertiaInvariants(body);
-  const fc::InertiaInvariants exact = fc::withRigidProperties(
-      lumped, lumped.mass, lumped.centerOfMass() + Vector3d(0.02, -0.01, 0.03),
-      1.08 * lumped.inertiaAboutOrigin());
-  const FreeBody b{exact, fc::mbs::modalProperties(body.eigenvalues, 0.0), nm};
-  auto measure = [&](const VectorXd& y) {
-    const Matrix3d A = fc::rotationMatrix(y.segment<4>(3));
-    const VectorXd w = y.segment(7, nm), v = y.segment(7 + nm, 6 + nm);
-    return Invariants{fc::mbs::kineticEnergy(exact, A, w, v) + fc::mbs::strainEnergy(b.modal, w),
-                      fc::mbs::linearMomentum(exact, A, w, v),
-                      fc::mbs::angularMomentum(exact, y.head<3>(), A, w, v)};
-  };
-  VectorXd y = initialState(nm);
-  const Invariants i0 = measure(y);
-  for (int c = 0; c < 10; ++c) {
-    y = rk4(b, y, 0.01, 100);
-    const Invariants i = measure(y);
-    EXPECT_LT(std::abs(i.energy - i0.energy) / i0.energy, 2e-6);
-    EXPECT_LT((i.L - i0.L).norm() / i0.L.norm(), 2e-6);
-    EXPECT_LT((i.H - i0.H).norm() / i0.H.norm(), 2e-6);
-  }
-}
-
 INSTANTIATE_TEST_SUITE_P(UndampedAndDamped, FreeFloating, ::testing::Values(0.0, 0.05));
 
 }  // namespace
