@@ -29,9 +29,9 @@ Deformed deformed(const InertiaInvariants& inv, const Eigen::VectorXd& w) {
   const Eigen::VectorXd cw = inv.modal_second_moment * w;  // (9): C_ab . w
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
-      const Eigen::MatrixXd& Sab = inv.modal_products[3 * a + b];
-      d.E(a, b) += cw(3 * a + b) + cw(3 * b + a) + w.dot(Sab * w);
-      d.B.row(3 * a + b) += (Sab.transpose() * w).transpose();
+      const Eigen::VectorXd wS = inv.modal_products[3 * a + b].transpose() * w;  // (w^T S_ab)^T
+      d.E(a, b) += cw(3 * a + b) + cw(3 * b + a) + wS.dot(w);
+      d.B.row(3 * a + b) += wS.transpose();
     }
   return d;
 }
