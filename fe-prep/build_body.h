@@ -31,7 +31,7 @@ struct BuildResult {
 
 struct BuildOptions {
   bool quiet = false;    // no progress lines
-  double tolerance = 1e-11;
+  double tolerance = 1e-10;
 };
 
 BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options = {});

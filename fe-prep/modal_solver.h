@@ -14,7 +14,7 @@ namespace fc::feprep {
 struct ModalRequest {
   long modes = 0;                 // lowest elastic modes wanted, or
   double max_frequency_hz = 0.0;  // all elastic modes below this frequency
-  double tolerance = 1e-11;       // SLEPc relative residual tolerance
+  double tolerance = 1e-10;       // SLEPc relative residual tolerance
   // Shift sigma < 0 (rad/s)^2 when rigid modes exist (K singular); with all
   // lambda >= 0 > sigma the modes nearest sigma are exactly the lowest ones.
   double shift = -1.0;
