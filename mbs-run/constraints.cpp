@@ -2,13 +2,15 @@
 
 #include <cmath>
 
+#include "common/rotations.h"
+
 namespace fc::mbs {
 
 using Eigen::Vector3d;
 
-void ConstraintRows::resize(int n) {
-  Ji.setZero(n, 6);
-  Jj.setZero(n, 6);
+void ConstraintRows::resize(int n, int nvi, int nvj) {
+  Ji.setZero(n, nvi);
+  Jj.setZero(n, nvj);
   phi.setZero(n);
   phit.setZero(n);
   c.setZero(n);
@@ -20,8 +22,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 void spherical(const Attached& xi, const Attached& xj, ConstraintRows& o, int row) {
   o.phi.segment<3>(row) = xj.x - xi.x;
-  o.Ji.block<3, 6>(row, 0) = -xi.J;
-  o.Jj.block<3, 6>(row, 0) = xj.J;
+  o.Ji.middleRows<3>(row) = -xi.J;
+  o.Jj.middleRows<3>(row) = xj.J;
   o.c.segment<3>(row) = xj.extra - xi.extra;
 }
 
@@ -42,21 +44,21 @@ void dot2(const Attached& a, const Attached& xi, const Attached& xj, ConstraintR
   o.c[row] = d.dot(a.extra) + a.x.dot(xj.extra - xi.extra) + 2.0 * a.xdot.dot(ddot);
 }
 
-// Driven angle: a(t) = A_i (cos(beta) h_i - sin(beta) f_i), beta = beta(t), b = f_j.
-// Phi = sin(raw - beta). The time derivatives of beta enter Phi_t and c.
-void drivenDot1(const BodyPose& bi, const RevoluteFrame& fr, const Attached& b, double beta,
-                double beta_dot, double beta_ddot, ConstraintRows& o, int row) {
+// Driven angle: a(t) = A_i (cos(beta) h_i - sin(beta) f_i) (turning with the
+// modal rotation at the joint), beta = beta(t), b = f_j. Phi = sin(raw - beta);
+// the time derivatives of beta enter Phi_t and c.
+void drivenDot1(const BodyPose& bi, const Eigen::MatrixXd& theta_i, const RevoluteFrame& fr, const Attached& b,
+                double beta, double beta_dot, double beta_ddot, ConstraintRows& o, int row) {
   const Vector3d a_body = std::cos(beta) * fr.hi - std::sin(beta) * fr.fi;
   const Vector3d a1_body = -std::sin(beta) * fr.hi - std::cos(beta) * fr.fi;  // d a / d beta
-  const Attached a = attachedVector(bi, a_body);
-  const Vector3d a1 = bi.A * a1_body;
-  const Vector3d adot_total = a.xdot + beta_dot * a1;
-  const Vector3d aextra_total = a.extra + 2.0 * beta_dot * (bi.A * bi.w.cross(a1_body)) +
-                                beta_ddot * a1 - beta_dot * beta_dot * a.x;
+  const Attached a = attachedVector(bi, a_body, theta_i);
+  const Attached a1 = attachedVector(bi, a1_body, theta_i);
+  const Vector3d adot_total = a.xdot + beta_dot * a1.x;
+  const Vector3d aextra_total = a.extra + 2.0 * beta_dot * a1.xdot + beta_ddot * a1.x - beta_dot * beta_dot * a.x;
   o.phi[row] = a.x.dot(b.x);
   o.Ji.row(row) = b.x.transpose() * a.J;
   o.Jj.row(row) = a.x.transpose() * b.J;
-  o.phit[row] = beta_dot * a1.dot(b.x);
+  o.phit[row] = beta_dot * a1.x.dot(b.x);
   o.c[row] = b.x.dot(aextra_total) + a.x.dot(b.extra) + 2.0 * adot_total.dot(b.xdot);
 }
 
@@ -79,7 +81,9 @@ RevoluteFrame revoluteFrame(const Joint& jt) {
 
 double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
   const RevoluteFrame fr = revoluteFrame(jt);
-  const Vector3d fi = bi.A * fr.fi, hi = bi.A * fr.hi, fj = bj.A * fr.fj;
+  const Vector3d fi = attachedVector(bi, fr.fi, jt.shapes_i.theta).x;
+  const Vector3d hi = attachedVector(bi, fr.hi, jt.shapes_i.theta).x;
+  const Vector3d fj = attachedVector(bj, fr.fj, jt.shapes_j.theta).x;
   return std::atan2(fj.dot(hi), fj.dot(fi));
 }
 
@@ -89,21 +93,39 @@ double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi
 }
 
 double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
-  const Vector3d axis = bi.A * jt.axis_i.normalized();
-  return axis.dot(bj.A * bj.w - bi.A * bi.w);
+  // Angular velocity of each joint frame: A (omega' + Theta wdot).
+  auto spin = [](const BodyPose& b, const Eigen::MatrixXd& theta) {
+    Vector3d w = b.w;
+    if (b.modal.size() > 0 && theta.cols() == b.modal.size()) w += theta * b.modal_rate;
+    return Vector3d(b.A * w);
+  };
+  const Vector3d axis = attachedVector(bi, jt.axis_i.normalized(), jt.shapes_i.theta).x;
+  return axis.dot(spin(bj, jt.shapes_j.theta) - spin(bi, jt.shapes_i.theta));
 }
 
+namespace {
+// Joint frame of a body: its axes turned by the modal rotation at the joint
+// (first order, as the constraint vectors).
+Eigen::Matrix3d jointFrame(const BodyPose& b, const Eigen::MatrixXd& theta) {
+  if (b.modal.size() == 0 || theta.cols() != b.modal.size()) return b.A;
+  return b.A * (Eigen::Matrix3d::Identity() + fc::skew(theta * b.modal));
+}
+}  // namespace
+
 void captureFixed(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
-  const Vector3d xi = bi.r + bi.A * jt.point_i, xj = bj.r + bj.A * jt.point_j;
+  const Vector3d xi = attachedPoint(bi, jt.point_i, jt.shapes_i.psi).x;
+  const Vector3d xj = attachedPoint(bj, jt.point_j, jt.shapes_j.psi).x;
   rt.fixed_offset = bi.A.transpose() * (xj - xi);
-  rt.fixed_rotation = bi.A.transpose() * bj.A;
+  rt.fixed_rotation = jointFrame(bi, jt.shapes_i.theta).inverse() * jointFrame(bj, jt.shapes_j.theta);
 }
 
 void captureLock(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
   const RevoluteFrame fr = revoluteFrame(jt);
-  // f_j seen in body i now; the held direction is perpendicular to it in the plane.
-  const Vector3d fj_in_i = bi.A.transpose() * (bj.A * fr.fj);
-  rt.lock_vector = jt.axis_i.normalized().cross(fj_in_i).normalized();
+  // f_j seen in body i's joint frame now; the held direction is perpendicular to it.
+  const Vector3d fj_in_i =
+      jointFrame(bi, jt.shapes_i.theta).inverse() * attachedVector(bj, fr.fj, jt.shapes_j.theta).x;
+  const Vector3d n = jt.axis_i.normalized();
+  rt.lock_vector = n.cross(fj_in_i - n * n.dot(fj_in_i)).normalized();
 }
 
 int constraintCount(const Joint& jt, const JointRuntime& rt) {
@@ -121,57 +143,57 @@ int constraintCount(const Joint& jt, const JointRuntime& rt) {
 
 void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& bi,
                       const BodyPose& bj, double t, ConstraintRows& o) {
-  o.resize(constraintCount(jt, rt));
+  o.resize(constraintCount(jt, rt), bi.nv(), bj.nv());
   if (o.size() == 0) return;
-  const Attached xj = attachedPoint(bj, jt.point_j);
+  const Eigen::MatrixXd &psi_i = jt.shapes_i.psi, &psi_j = jt.shapes_j.psi;
+  const Eigen::MatrixXd &th_i = jt.shapes_i.theta, &th_j = jt.shapes_j.theta;
+  auto vi = [&](const Vector3d& u) { return attachedVector(bi, u, th_i); };
+  auto vj = [&](const Vector3d& u) { return attachedVector(bj, u, th_j); };
+  const Attached xj = attachedPoint(bj, jt.point_j, psi_j);
   switch (jt.type) {
     case JointType::Spherical:
-      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
+      spherical(attachedPoint(bi, jt.point_i, psi_i), xj, o, 0);
       break;
     case JointType::Universal:
-      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
-      dot1(attachedVector(bi, jt.axis_i), attachedVector(bj, jt.axis_j), o, 3);
+      spherical(attachedPoint(bi, jt.point_i, psi_i), xj, o, 0);
+      dot1(vi(jt.axis_i), vj(jt.axis_j), o, 3);
       break;
     case JointType::Revolute: {
-      spherical(attachedPoint(bi, jt.point_i), xj, o, 0);
+      spherical(attachedPoint(bi, jt.point_i, psi_i), xj, o, 0);
       Vector3d uj, wj;
       orthonormalComplement(jt.axis_j, uj, wj);
-      const Attached ai = attachedVector(bi, jt.axis_i.normalized());
-      dot1(ai, attachedVector(bj, uj), o, 3);
-      dot1(ai, attachedVector(bj, wj), o, 4);
+      const Attached ai = vi(jt.axis_i.normalized());
+      dot1(ai, vj(uj), o, 3);
+      dot1(ai, vj(wj), o, 4);
       const RevoluteFrame fr = revoluteFrame(jt);
       if (jt.drive.active) {
-        const Attached fj = attachedVector(bj, fr.fj);
-        drivenDot1(bi, fr, fj, jt.drive.angle(t) - rt.angle_offset, jt.drive.rate(t),
+        drivenDot1(bi, th_i, fr, vj(fr.fj), jt.drive.angle(t) - rt.angle_offset, jt.drive.rate(t),
                    jt.drive.accel(t), o, 5);
       } else if (rt.locked) {
-        dot1(attachedVector(bi, rt.lock_vector), attachedVector(bj, fr.fj), o, 5);
+        dot1(vi(rt.lock_vector), vj(fr.fj), o, 5);
       }
       break;
     }
     case JointType::Fixed: {
-      spherical(attachedPoint(bi, jt.point_i + rt.fixed_offset), xj, o, 0);
+      spherical(attachedPoint(bi, jt.point_i + rt.fixed_offset, psi_i), xj, o, 0);
       const Eigen::Matrix3d& R = rt.fixed_rotation;
-      for (int k = 0; k < 3; ++k) {
-        dot1(attachedVector(bi, R.col(k)), attachedVector(bj, Eigen::Vector3d::Unit((k + 1) % 3)), o,
-             3 + k);
-      }
+      for (int k = 0; k < 3; ++k) dot1(vi(R.col(k)), vj(Eigen::Vector3d::Unit((k + 1) % 3)), o, 3 + k);
       break;
     }
     case JointType::Cylindrical:
     case JointType::Prismatic: {
-      const Attached xi = attachedPoint(bi, jt.point_i);
+      const Attached xi = attachedPoint(bi, jt.point_i, psi_i);
       Vector3d ui, wi, uj, wj;
       orthonormalComplement(jt.axis_i, ui, wi);
       orthonormalComplement(jt.axis_j, uj, wj);
-      const Attached ai = attachedVector(bi, jt.axis_i.normalized());
-      dot2(attachedVector(bi, ui), xi, xj, o, 0);
-      dot2(attachedVector(bi, wi), xi, xj, o, 1);
-      dot1(ai, attachedVector(bj, uj), o, 2);
-      dot1(ai, attachedVector(bj, wj), o, 3);
+      const Attached ai = vi(jt.axis_i.normalized());
+      dot2(vi(ui), xi, xj, o, 0);
+      dot2(vi(wi), xi, xj, o, 1);
+      dot1(ai, vj(uj), o, 2);
+      dot1(ai, vj(wj), o, 3);
       if (jt.type == JointType::Prismatic) {
         const RevoluteFrame fr = revoluteFrame(jt);
-        dot1(attachedVector(bi, rt.lock_vector), attachedVector(bj, fr.fj), o, 4);
+        dot1(vi(rt.lock_vector), vj(fr.fj), o, 4);
       }
       break;
     }

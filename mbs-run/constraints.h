@@ -32,10 +32,10 @@ struct JointRuntime {
 };
 
 struct ConstraintRows {
-  Eigen::MatrixXd Ji, Jj;  // (n, 6) each
+  Eigen::MatrixXd Ji, Jj;  // (n, 6 + nm_i), (n, 6 + nm_j)
   Eigen::VectorXd phi, phit, c;
   int size() const { return static_cast<int>(phi.size()); }
-  void resize(int n);
+  void resize(int n, int nvi, int nvj);
 };
 
 // Reference vectors of a revolute (or prismatic) joint: axis on i, f_i and
@@ -45,7 +45,9 @@ struct RevoluteFrame {
 };
 RevoluteFrame revoluteFrame(const Joint& jt);
 
-// Raw relative angle of body j about the axis of body i, in (-pi, pi].
+// Raw relative angle of body j about the axis of body i, in (-pi, pi]; on
+// flexible bodies the reference vectors turn with the modal rotation at the
+// joint's points.
 double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj);
 // Unwrapped angle (continuous past pi) given the runtime's last known angle.
 double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi, const BodyPose& bj);

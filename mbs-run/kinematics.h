@@ -1,16 +1,18 @@
 #pragma once
-// Kinematics of points and vectors attached to a rigid body frame, in the
-// velocity coordinates shared by every body: v = [rdot (global), omega' (body)].
-// For a body-fixed point s (body frame), x = r + A s and
-//   xdot  = J v,               J = [I, -A s~]
-//   xddot = J vdot + A w~ w~ s (the "extra" term, quadratic in w = omega')
-// and for a body-fixed vector u, g = A u, J = [0, -A u~], extra = A w~ w~ u.
-// These are the building blocks of every constraint (Nikravesh 1988, ch. 6-7).
+// Kinematics of points and vectors attached to a body frame, in the velocity
+// coordinates shared by every body: v = [rdot (global), omega' (body), wdot
+// (modal rates, flexible bodies only)]. For a point with undeformed position s0
+// and translational mode shapes Psi, s = s0 + Psi w and x = r + A s:
+//   xdot  = J v,   J = [I, -A s~, A Psi]
+//   xddot = J vdot + A (w'~ w'~ s + 2 w'~ Psi wdot)         (w' = omega')
+// and for a vector u turning with the modal rotation Theta w at its point,
+// u_d = u + (Theta w) x u (first order in w, the shared convention):
+//   J = [0, -A u_d~, -A u~ Theta],  extra = A (w'~ w'~ u_d + 2 w'~ ((Theta wdot) x u)).
+// For rigid bodies Psi and Theta have no columns and these are Nikravesh's
+// (1988, ch. 6-7) rigid-body expressions.
 #include <Eigen/Dense>
 
 namespace fc::mbs {
-
-using Matrix36d = Eigen::Matrix<double, 3, 6>;
 
 // Pose and velocity of one body frame. Fixed bodies have zero velocity and no
 // velocity coordinates (free = false).
@@ -20,7 +22,9 @@ struct BodyPose {
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
   Eigen::Vector3d rdot = Eigen::Vector3d::Zero();
   Eigen::Vector3d w = Eigen::Vector3d::Zero();  // angular velocity, body axes
+  Eigen::VectorXd modal, modal_rate;            // (nm), empty for rigid bodies
   bool free = false;
+  int nv() const { return 6 + static_cast<int>(modal.size()); }
 };
 
 // A body-fixed point or vector evaluated at a pose.
@@ -28,10 +32,14 @@ struct Attached {
   Eigen::Vector3d x;      // global position (point) or global vector
   Eigen::Vector3d xdot;   // its time derivative
   Eigen::Vector3d extra;  // xddot - J vdot
-  Matrix36d J;            // d(xdot)/dv
+  Eigen::MatrixXd J;      // (3, 6 + nm) d(xdot)/dv
 };
 
-Attached attachedPoint(const BodyPose& b, const Eigen::Vector3d& s);
+// psi / theta: (3, nm) shapes at the point; pass empty (3, 0) for rigid bodies.
+Attached attachedPoint(const BodyPose& b, const Eigen::Vector3d& s0, const Eigen::MatrixXd& psi);
+Attached attachedVector(const BodyPose& b, const Eigen::Vector3d& u, const Eigen::MatrixXd& theta);
+// Rigid-body shorthands (no modal terms).
+Attached attachedPoint(const BodyPose& b, const Eigen::Vector3d& s0);
 Attached attachedVector(const BodyPose& b, const Eigen::Vector3d& u);
 
 // Two unit vectors completing `axis` to a right-handed orthonormal triad

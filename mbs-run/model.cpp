@@ -58,8 +58,8 @@ void Model::finalize() {
     }
     b.pos_index = nq;
     b.dof_index = nv;
-    nq += 7;
-    nv += 6;
+    nq += b.nq();
+    nv += b.nv();
   }
 }
 

@@ -5,10 +5,13 @@
 // SystemState (state.h) and the run-time switches in Switches (switches below).
 #include <Eigen/Dense>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace fc::mbs {
+
+struct FlexibleBodyData;  // mbs-run/flexible/flexible_body.h
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -27,8 +30,14 @@ struct Body {
   Vector4d orientation = Vector4d(1, 0, 0, 0);
   Vector3d velocity = Vector3d::Zero();
   Vector3d angular_velocity = Vector3d::Zero();
-  int dof_index = -1;  // first velocity coordinate (6 per free body), -1 if fixed
-  int pos_index = -1;  // first position coordinate (7 per free body)
+  // Flexible bodies (floating frame of reference): modal data from the body
+  // file; `modes` modal coordinates follow the rigid ones in q and v.
+  std::shared_ptr<const FlexibleBodyData> flex;
+  int modes = 0;
+  int dof_index = -1;  // first velocity coordinate (6 + modes per free body), -1 if fixed
+  int pos_index = -1;  // first position coordinate (7 + modes per free body)
+  int nv() const { return 6 + modes; }
+  int nq() const { return 7 + modes; }
 };
 
 enum class JointType { Spherical, Revolute, Fixed, Universal, Cylindrical, Prismatic };
@@ -43,11 +52,20 @@ struct Drive {
   double accel(double t) const;
 };
 
+// Mode shapes at an attachment point of a body with nm modes: translation Psi
+// and rotation Theta, each (3, nm); zero for points that only move with the
+// frame, empty (3, 0) for rigid bodies.
+struct PointShapes {
+  Eigen::MatrixXd psi = Eigen::MatrixXd::Zero(3, 0), theta = Eigen::MatrixXd::Zero(3, 0);
+};
+
 struct Joint {
   std::string name;
   JointType type = JointType::Spherical;
   int body_i = -1, body_j = -1;               // indices into Model::bodies
   Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();  // body frames
+  // Axes and held directions of a body turn with the modal rotation at its point.
+  PointShapes shapes_i, shapes_j;
   Vector3d axis_i = Vector3d::UnitZ(), axis_j = Vector3d::UnitZ();  // unit, body frames
   double initial_angle = 0.0;                 // revolute: angle in the initial configuration
   bool enabled = true;
@@ -75,6 +93,7 @@ struct ForceElement {
   double damping = 0.0;                 // rotational [N m s], translational [N s/m]
   int body_i = -1, body_j = -1;         // translational spring / constant force (body_i)
   Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();
+  PointShapes shapes_i, shapes_j;
   double stiffness = 0.0, free_length = 0.0;  // translational spring
 };
 
@@ -114,7 +133,7 @@ struct Model {
   std::vector<ForceElement> forces;
   std::vector<Event> events;
   Settings settings;
-  int nq = 0, nv = 0;  // 7 and 6 per free body
+  int nq = 0, nv = 0;  // 7 + modes and 6 + modes per free body
   std::string source;  // scene file, for messages
 
   // Assigns dof_index/pos_index and nq/nv; call after the bodies are final.

@@ -33,6 +33,16 @@ std::vector<std::pair<std::string, Eigen::MatrixXd>> channels(const Model& m, co
     c.emplace_back(b + "orientation", rows<4>(r.orientation[k]));
     c.emplace_back(b + "velocity", rows<3>(r.velocity[k]));
     c.emplace_back(b + "angular_velocity", rows<3>(r.angular_velocity[k]));
+    const int nm = m.bodies[k].modes;
+    if (nm > 0) {
+      Eigen::MatrixXd q(r.modal[k].size(), nm), qd(r.modal[k].size(), nm);
+      for (std::size_t i = 0; i < r.modal[k].size(); ++i) {
+        q.row(i) = r.modal[k][i].transpose();
+        qd.row(i) = r.modal_rate[k][i].transpose();
+      }
+      c.emplace_back(b + "modal_coordinates", q);
+      c.emplace_back(b + "modal_velocities", qd);
+    }
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const std::string p = "joints/" + m.joints[j].name + "/";
@@ -97,7 +107,8 @@ void writeCsv(const std::string& path, const Model& model, const Results& r,
     for (Eigen::Index c = 0; c < m.cols(); ++c) {
       if (k || c) s << ",";
       s << name;
-      if (m.cols() == 4) s << "_e" << c;
+      if (name.find("/modal_") != std::string::npos) s << "_" << c + 1;
+      else if (m.cols() == 4) s << "_e" << c;
       else if (m.cols() > 1) s << "_" << xyz[c];
     }
   }

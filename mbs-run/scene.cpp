@@ -4,6 +4,7 @@
 #include <set>
 
 #include "common/rotations.h"
+#include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/rigid_body.h"
 
 namespace fc::mbs {
@@ -40,8 +41,16 @@ void parseInertia(const InputNode& b, Body& body) {
   if (given != 1)
     b.fail("expected exactly one of 'rigid', 'rod', 'plate' or 'flexible' to define the body's inertia");
   if (b.has("flexible")) {
-    b["flexible"].fail("flexible bodies are not yet supported by this mbs-run (the flexible kernel is being "
-                       "integrated); use 'rigid' (or 'rod'/'plate') for now");
+    // Reduced flexible body from an fe-prep body file (errors at the key).
+    auto flex = std::make_shared<FlexibleBodyData>(loadFlexibleBody(b["flexible"]));
+    const InertiaInvariants& inv = flex->inertia;
+    body.mass = inv.mass;
+    body.com = inv.centerOfMass();
+    const Eigen::Matrix3d cs = fc::skew(body.com);
+    body.inertia_com = inv.inertiaAboutOrigin() + body.mass * cs * cs;  // back to the CoM
+    body.modes = flex->modes;
+    body.flex = flex;
+    return;
   }
   if (b.has("rigid")) {
     const InputNode r = b["rigid"];
@@ -80,6 +89,7 @@ Body parseBody(const InputNode& b) {
   body.name = b["name"].asString();
   parseInertia(b, body);
   body.fixed = b.flag("fixed", false);
+  if (body.fixed && body.flex) b["fixed"].fail("a flexible body cannot be fixed: use a rigid body, or clamp it with a fixed joint");
   if (b.has("position")) body.position = vec3(b["position"]);
   if (b.has("orientation")) {
     const Eigen::VectorXd p = b["orientation"].asVector(4);
@@ -107,10 +117,31 @@ int bodyRef(const Model& m, const InputNode& n) {
   return k;
 }
 
-Vector3d pointRef(const Model& m, int body, const InputNode& n) {
-  if (n.isScalar())
-    n.fail("'" + n.asString() + "' names an interface, but body '" + m.bodies[body].name +
-           "' is rigid: expected body-frame coordinates [x, y, z]");
+// A joint or force point: body-frame coordinates (moving with the frame only),
+// or, on a flexible body, the name of one of its interfaces (moving with the
+// modes too).
+Vector3d pointRef(const Model& m, int body, const InputNode& n, PointShapes& shapes) {
+  const Body& b = m.bodies[body];
+  shapes.psi = Eigen::MatrixXd::Zero(3, b.modes);
+  shapes.theta = Eigen::MatrixXd::Zero(3, b.modes);
+  if (n.isScalar()) {
+    const std::string name = n.asString();
+    if (!b.flex)
+      n.fail("'" + name + "' names an interface, but body '" + b.name +
+             "' is rigid: expected body-frame coordinates [x, y, z]");
+    if (!b.flex->findInterface(name)) {
+      const std::vector<std::string> names = b.flex->interfaceNames();
+      const std::string hint = closestMatch(name, names);
+      std::string known;
+      for (const auto& k : names) known += (known.empty() ? "" : ", ") + k;
+      n.fail("body '" + b.name + "' (" + b.flex->file + ") has no interface '" + name + "'" +
+             (hint.empty() ? "" : " (did you mean '" + hint + "'?)") + "; it has: " + known);
+    }
+    const Marker mk = b.flex->marker(name);
+    shapes.psi = mk.Psi;
+    shapes.theta = mk.Theta;
+    return mk.s0;
+  }
   return vec3(n);
 }
 
@@ -142,8 +173,8 @@ Joint parseJoint(const Model& m, const InputNode& j) {
     bodies.fail("both bodies are fixed: the joint would constrain nothing");
   const InputNode pts = j["points"];
   if (!pts.isSequence() || pts.size() != 2) pts.fail("expected two points [on first body, on second body]");
-  jt.point_i = pointRef(m, jt.body_i, pts.at(0));
-  jt.point_j = pointRef(m, jt.body_j, pts.at(1));
+  jt.point_i = pointRef(m, jt.body_i, pts.at(0), jt.shapes_i);
+  jt.point_j = pointRef(m, jt.body_j, pts.at(1), jt.shapes_j);
   const bool needs_axes = jt.type == JointType::Revolute || jt.type == JointType::Universal ||
                           jt.type == JointType::Cylindrical || jt.type == JointType::Prismatic;
   if (needs_axes) {
@@ -220,8 +251,8 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.body_j = bodyRef(m, b.at(1));
     const InputNode p = f["points"];
     if (!p.isSequence() || p.size() != 2) p.fail("expected two points");
-    fe.point_i = pointRef(m, fe.body_i, p.at(0));
-    fe.point_j = pointRef(m, fe.body_j, p.at(1));
+    fe.point_i = pointRef(m, fe.body_i, p.at(0), fe.shapes_i);
+    fe.point_j = pointRef(m, fe.body_j, p.at(1), fe.shapes_j);
     fe.stiffness = f["stiffness"].asNonNegative();
     fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
     fe.free_length = f["free_length"].asNonNegative();
@@ -229,7 +260,11 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     f.allowKeys({"name", "type", "body", "point", "force", "enabled"});
     fe.type = ForceType::ConstantForce;
     fe.body_i = bodyRef(m, f["body"]);
-    fe.point_i = f.has("point") ? pointRef(m, fe.body_i, f["point"]) : m.bodies[fe.body_i].com;
+    fe.point_i = f.has("point") ? pointRef(m, fe.body_i, f["point"], fe.shapes_i) : m.bodies[fe.body_i].com;
+    if (!f.has("point")) {
+      fe.shapes_i.psi = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);
+      fe.shapes_i.theta = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);
+    }
     fe.vector = vec3(f["force"]);
   } else if (type == "torque") {
     f.allowKeys({"name", "type", "body", "torque", "enabled"});
@@ -384,6 +419,8 @@ IntegratorKind chooseIntegrator(const Model& m) {
       wmax = std::max(wmax, std::sqrt(slope / lightest(jt.body_i, jt.body_j, true)));
     }
   }
+  for (const Body& b : m.bodies)
+    if (b.flex && b.modes > 0) wmax = std::max(wmax, std::sqrt(b.flex->modal.stiffness.maxCoeff()));
   return wmax > 2000.0 ? IntegratorKind::Bdf : IntegratorKind::DormandPrince;
 }
 

@@ -22,7 +22,7 @@ void record(System& sys, double t, VectorXd y, Results& R) {
   const Model& m = sys.model();
   for (const Body& b : m.bodies)
     if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
-  std::vector<BodyPose> P;
+  std::vector<BodyPose> P;  // (modal coordinates come with the poses)
   sys.poses(y, P);
   R.time.push_back(t);
   for (std::size_t k = 0; k < m.bodies.size(); ++k) {
@@ -30,6 +30,8 @@ void record(System& sys, double t, VectorXd y, Results& R) {
     R.orientation[k].push_back(P[k].p);
     R.velocity[k].push_back(P[k].rdot);
     R.angular_velocity[k].push_back(P[k].A * P[k].w);
+    R.modal[k].push_back(P[k].modal);
+    R.modal_rate[k].push_back(P[k].modal_rate);
   }
   const std::vector<Eigen::Vector3d> reac = sys.reactions(t, y);
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
@@ -90,6 +92,8 @@ Results simulate(const Model& model, const RunOptions& options) {
   R.orientation.resize(model.bodies.size());
   R.velocity.resize(model.bodies.size());
   R.angular_velocity.resize(model.bodies.size());
+  R.modal.resize(model.bodies.size());
+  R.modal_rate.resize(model.bodies.size());
   R.joint_angle.resize(model.joints.size());
   R.reaction.resize(model.joints.size());
 

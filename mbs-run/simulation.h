@@ -20,6 +20,7 @@ struct Results {
   // [body][row] -> 3 or 4 values (global frame).
   std::vector<std::vector<Eigen::Vector3d>> position, velocity, angular_velocity;
   std::vector<std::vector<Eigen::Vector4d>> orientation;
+  std::vector<std::vector<Eigen::VectorXd>> modal, modal_rate; // [body][row] (flexible bodies)
   std::vector<std::vector<double>> joint_angle;                // [joint][row] (revolute only)
   std::vector<std::vector<Eigen::Vector3d>> reaction;          // [joint][row]
   std::vector<double> kinetic, potential, strain, dissipated, applied_work, violation;

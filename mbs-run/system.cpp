@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include "common/rotations.h"
+#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/flexible/modal.h"
 #include "mbs-run/rigid_body.h"
 
 namespace fc::mbs {
@@ -52,6 +55,13 @@ void System::poses(const VectorXd& y, std::vector<BodyPose>& out) const {
       P.w = y.segment<3>(model_.nq + b.dof_index + 3);
       P.free = true;
     }
+    if (b.modes > 0 && !b.fixed) {
+      P.modal = y.segment(b.pos_index + 7, b.modes);
+      P.modal_rate = y.segment(model_.nq + b.dof_index + 6, b.modes);
+    } else {
+      P.modal.resize(0);
+      P.modal_rate.resize(0);
+    }
     P.A = fc::rotationMatrix(P.p);
   }
 }
@@ -76,6 +86,7 @@ double System::penalty() const {
   double m = 0.0;
   for (const Body& b : model_.bodies)
     if (!b.fixed) m = std::max(m, std::max(b.mass, b.inertia_com.diagonal().maxCoeff()));
+  // Modal masses are 1 (mass-normalised modes), within that range.
   return model_.settings.penalty * std::max(m, 1e-12);
 }
 
@@ -100,11 +111,12 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
     phit_.segment(r0, rows.size()) = rows.phit;
     c_.segment(r0, rows.size()) = rows.c;
     const Body &bi = model_.bodies[jt.body_i], &bj = model_.bodies[jt.body_j];
-    for (int r = 0; r < rows.size(); ++r)
-      for (int k = 0; k < 6; ++k) {
-        if (!bi.fixed) trip_.emplace_back(r0 + r, bi.dof_index + k, rows.Ji(r, k));
-        if (!bj.fixed) trip_.emplace_back(r0 + r, bj.dof_index + k, rows.Jj(r, k));
-      }
+    for (int r = 0; r < rows.size(); ++r) {
+      if (!bi.fixed)
+        for (int k = 0; k < bi.nv(); ++k) trip_.emplace_back(r0 + r, bi.dof_index + k, rows.Ji(r, k));
+      if (!bj.fixed)
+        for (int k = 0; k < bj.nv(); ++k) trip_.emplace_back(r0 + r, bj.dof_index + k, rows.Jj(r, k));
+    }
   }
   Phi_v_.resize(m, model_.nv);
   Phi_v_.setFromTriplets(trip_.begin(), trip_.end());
@@ -112,13 +124,24 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
 
 void System::assembleMass(const std::vector<BodyPose>& P) {
   trip_.clear();
+  Qv_.setZero(model_.nv);
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed) continue;
-    const Matrix6d Mb = rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A);
-    // All 36 entries, even zeros, so that the sparsity pattern never changes.
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) trip_.emplace_back(b.dof_index + r, b.dof_index + c, Mb(r, c));
+    Eigen::MatrixXd Mb;
+    if (b.flex) {
+      // Floating frame of reference: inertia from the body file's invariants
+      // (mbs-run/flexible, shared conventions of the flexible-body kernel).
+      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w);
+      Mb = fi.M;
+      Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
+    } else {
+      Mb = rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A);
+      Qv_.segment<6>(b.dof_index) = rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P[k].A, P[k].w);
+    }
+    // All entries, even zeros, so that the sparsity pattern never changes.
+    for (int r = 0; r < b.nv(); ++r)
+      for (int c = 0; c < b.nv(); ++c) trip_.emplace_back(b.dof_index + r, b.dof_index + c, Mb(r, c));
   }
   M_.resize(model_.nv, model_.nv);
   M_.setFromTriplets(trip_.begin(), trip_.end());
@@ -140,24 +163,34 @@ void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q
   Q.setZero(model_.nv);
   dissipation = 0.0;
   applied_power = 0.0;
-  auto addForceAt = [&](int body, const Vector3d& s, const Vector3d& f) {
+  // Generalised forces J^T f of a global force at a point and J_w^T n of a
+  // global torque, J = [I, -A s~, A Psi], J_w = [0, A, A Theta].
+  auto addForceAt = [&](int body, const Vector3d& s0, const PointShapes& sh, const Vector3d& f) {
     const Body& b = model_.bodies[body];
     if (b.fixed) return;
-    Q.segment<3>(b.dof_index) += f;
-    Q.segment<3>(b.dof_index + 3) += s.cross(P[body].A.transpose() * f);
+    Q.segment(b.dof_index, b.nv()) += attachedPoint(P[body], s0, sh.psi).J.transpose() * f;
   };
-  auto addTorque = [&](int body, const Vector3d& n) {
+  auto addTorque = [&](int body, const PointShapes& sh, const Vector3d& n) {
     const Body& b = model_.bodies[body];
     if (b.fixed) return;
-    Q.segment<3>(b.dof_index + 3) += P[body].A.transpose() * n;
+    const Vector3d nb = P[body].A.transpose() * n;
+    Q.segment<3>(b.dof_index + 3) += nb;
+    if (b.modes > 0 && sh.theta.cols() == b.modes) Q.segment(b.dof_index + 6, b.modes) += sh.theta.transpose() * nb;
   };
+  const PointShapes frame_only;
   for (std::size_t f = 0; f < model_.forces.size(); ++f) {
     if (!force_on_[f]) continue;
     const ForceElement& fe = model_.forces[f];
     switch (fe.type) {
       case ForceType::Gravity:
-        for (std::size_t k = 0; k < model_.bodies.size(); ++k)
-          addForceAt(static_cast<int>(k), model_.bodies[k].com, model_.bodies[k].mass * fe.vector);
+        for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+          const Body& b = model_.bodies[k];
+          if (b.fixed) continue;
+          if (b.flex)
+            Q.segment(b.dof_index, b.nv()) += gravityForces(b.flex->inertia, P[k].A, P[k].modal, fe.vector);
+          else
+            addForceAt(static_cast<int>(k), b.com, frame_only, b.mass * fe.vector);
+        }
         break;
       case ForceType::RotationalSpringDamper: {
         const Joint& jt = model_.joints[fe.joint];
@@ -165,33 +198,32 @@ void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q
         const double th = revoluteAngle(jt, joints_[fe.joint], bi, bj);
         const double thd = revoluteRate(jt, bi, bj);
         const double M = fe.torque.value(th) + fe.damping * thd;
-        const Vector3d axis = bi.A * jt.axis_i.normalized();
-        addTorque(jt.body_i, M * axis);
-        addTorque(jt.body_j, -M * axis);
+        const Vector3d axis = attachedVector(bi, jt.axis_i.normalized(), jt.shapes_i.theta).x;
+        addTorque(jt.body_i, jt.shapes_i, M * axis);
+        addTorque(jt.body_j, jt.shapes_j, -M * axis);
         dissipation += fe.damping * thd * thd;
         break;
       }
       case ForceType::TranslationalSpringDamper: {
-        const Vector3d xi = P[fe.body_i].r + P[fe.body_i].A * fe.point_i;
-        const Vector3d xj = P[fe.body_j].r + P[fe.body_j].A * fe.point_j;
-        const Vector3d vi = P[fe.body_i].rdot + P[fe.body_i].A * P[fe.body_i].w.cross(fe.point_i);
-        const Vector3d vj = P[fe.body_j].rdot + P[fe.body_j].A * P[fe.body_j].w.cross(fe.point_j);
-        const Vector3d d = xj - xi;
+        const Attached ai = attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi);
+        const Attached aj = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi);
+        const Vector3d vi = ai.xdot, vj = aj.xdot;
+        const Vector3d d = aj.x - ai.x;
         const double L = d.norm();
         if (L <= 0.0) break;  // direction undefined; the force is continuous only for L > 0
         const Vector3d e = d / L;
         const double Ld = e.dot(vj - vi);
         const double F = fe.stiffness * (L - fe.free_length) + fe.damping * Ld;
-        addForceAt(fe.body_i, fe.point_i, F * e);
-        addForceAt(fe.body_j, fe.point_j, -F * e);
+        addForceAt(fe.body_i, fe.point_i, fe.shapes_i, F * e);
+        addForceAt(fe.body_j, fe.point_j, fe.shapes_j, -F * e);
         dissipation += fe.damping * Ld * Ld;
         break;
       }
       case ForceType::ConstantForce:
-        addForceAt(fe.body_i, fe.point_i, fe.vector);
+        addForceAt(fe.body_i, fe.point_i, fe.shapes_i, fe.vector);
         break;
       case ForceType::ConstantTorque:
-        addTorque(fe.body_i, fe.vector);
+        addTorque(fe.body_i, frame_only, fe.vector);
         applied_power += fe.vector.dot(P[fe.body_i].A * P[fe.body_i].w);
         break;
     }
@@ -209,10 +241,13 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   double dissipation, applied;
   appliedForces(t, P_, Q, dissipation, applied);
   const VectorXd v = y.segment(nq, nv);
+  Q += Qv_;
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
-    if (b.fixed) continue;
-    Q.segment<6>(b.dof_index) += rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P_[k].A, P_[k].w);
+    if (b.fixed || b.modes == 0) continue;
+    // Modal stiffness and damping: - (Lambda w + D wdot) on the modal rows.
+    Q.segment(b.dof_index + 6, b.modes) -= elasticForces(b.flex->modal, P_[k].modal, P_[k].modal_rate);
+    dissipation += dissipatedPower(b.flex->modal, P_[k].modal_rate);
   }
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
@@ -232,6 +267,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     const Eigen::Vector4d p = y.segment<4>(b.pos_index + 3);
     ydot.segment<3>(b.pos_index) = y.segment<3>(nq + b.dof_index);
     ydot.segment<4>(b.pos_index + 3) = 0.5 * fc::Lmatrix(p).transpose() * y.segment<3>(nq + b.dof_index + 3);
+    if (b.modes > 0) ydot.segment(b.pos_index + 7, b.modes) = y.segment(nq + b.dof_index + 6, b.modes);
   }
   ydot.segment(nq, nv) = r.vdot;
   ydot[nq + nv] = dissipation;
@@ -269,6 +305,7 @@ double System::project(double t, VectorXd& y) {
       Eigen::Vector4d dp(1, 0, 0, 0);
       if (ang > 0) dp = fc::eulerParametersFromAxisAngle(dth / ang, ang);
       y.segment<4>(b.pos_index + 3) = fc::quatProduct(y.segment<4>(b.pos_index + 3), dp).normalized();
+      if (b.modes > 0) y.segment(b.pos_index + 7, b.modes) += dq.segment(b.dof_index + 6, b.modes);
     }
   }
   for (const Body& b : model_.bodies)
@@ -292,7 +329,14 @@ Energies System::energies(double t, const VectorXd& y) const {
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed) continue;
-    e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);
+    if (b.flex) {
+      Eigen::VectorXd v(b.nv());
+      v << P[k].rdot, P[k].w, P[k].modal_rate;
+      e.kinetic += kineticEnergy(b.flex->inertia, P[k].A, P[k].modal, v);
+      e.strain += strainEnergy(b.flex->modal, P[k].modal);
+    } else {
+      e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);
+    }
   }
   for (std::size_t f = 0; f < model_.forces.size(); ++f) {
     if (!force_on_[f]) continue;
@@ -302,7 +346,8 @@ Energies System::energies(double t, const VectorXd& y) const {
         for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
           const Body& b = model_.bodies[k];
           if (b.fixed) continue;
-          e.potential -= b.mass * fe.vector.dot(P[k].r + P[k].A * b.com);
+          if (b.flex) e.potential += gravityPotential(b.flex->inertia, P[k].r, P[k].A, P[k].modal, fe.vector);
+          else e.potential -= b.mass * fe.vector.dot(P[k].r + P[k].A * b.com);
         }
         break;
       case ForceType::RotationalSpringDamper: {
@@ -311,15 +356,15 @@ Energies System::energies(double t, const VectorXd& y) const {
         break;
       }
       case ForceType::TranslationalSpringDamper: {
-        const Vector3d d = (P[fe.body_j].r + P[fe.body_j].A * fe.point_j) -
-                           (P[fe.body_i].r + P[fe.body_i].A * fe.point_i);
+        const Vector3d d = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi).x -
+                           attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi).x;
         const double stretch = d.norm() - fe.free_length;
         e.potential += 0.5 * fe.stiffness * stretch * stretch;
         break;
       }
       case ForceType::ConstantForce:
         if (!model_.bodies[fe.body_i].fixed)
-          e.potential -= fe.vector.dot(P[fe.body_i].r + P[fe.body_i].A * fe.point_i);
+          e.potential -= fe.vector.dot(attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi).x);
         break;
       case ForceType::ConstantTorque:
         break;

@@ -88,7 +88,7 @@ class System {
   // Workspace.
   std::vector<BodyPose> P_;
   SparseMatrixd M_, Phi_v_;
-  Eigen::VectorXd phi_, phit_, c_, lambda_;
+  Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;
   std::vector<Eigen::Triplet<double>> trip_;
   AlSolver solver_;
   long pattern_signature_ = -1;

@@ -53,9 +53,9 @@ TEST(SceneErrors, NegativeMass) {
 TEST(SceneErrors, NonUnitEulerParameters) {
   expectError(kHead + "    orientation: [1, 1, 0, 0]\n" + kSim, {5, "bodies[1].orientation", "unit Euler parameters"});
 }
-TEST(SceneErrors, FlexibleBodiesNotYetSupported) {
-  expectError("bodies:\n  - name: p\n    flexible: {file: panel.h5, modes: 4}\n" + kSim,
-              {3, "bodies[0].flexible", "not yet supported"});
+TEST(SceneErrors, FlexibleBodyFileMissing) {
+  expectError("bodies:\n  - name: p\n    flexible: {file: no-such-panel.h5, modes: 4}\n" + kSim,
+              {3, "bodies[0].flexible.file", "flexible body file"});
 }
 TEST(SceneErrors, InterfaceNameOnRigidBody) {
   expectError(kHead + "joints:\n  - {name: J, type: spherical, bodies: [ground, arm], points: [[0,0,0], S1]}\n" + kSim,
