@@ -61,7 +61,10 @@ TEST_P(SolidCircle, StiffnessAndShearCorrection) {
   // Symmetry: no couplings, all centres at the origin.
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j)
-      if (i != j) EXPECT_LT(std::abs(p.timoshenko(i, j)), 1e-9 * std::sqrt(p.timoshenko(i, i) * p.timoshenko(j, j)));
+      if (i != j) {
+        EXPECT_LT(std::abs(p.timoshenko(i, j)),
+                  1e-9 * std::sqrt(p.timoshenko(i, i) * p.timoshenko(j, j)));
+      }
   EXPECT_LT(p.shear_center.norm(), 1e-9 * R);
   EXPECT_LT(p.tension_center.norm(), 1e-9 * R);
 }
