@@ -1,5 +1,5 @@
 // Timing of the cross-section analysis (assembly, factorisation, the two
-// warping solves) from a few hundred to ~200 000 elements, on gmsh meshes of a
+// warping solves) from a few hundred to ~100 000 elements, on gmsh meshes of a
 // laminated box (quadratic triangles) and on VABS's MH-104 blade section
 // (21 213 linear triangles). Meshing is done once, outside the timed loop.
 // Peak resident memory is reported as a counter (getrusage, whole process).
@@ -59,7 +59,7 @@ void BM_Box(benchmark::State& state) {
   state.counters["nodes"] = static_cast<double>(mesh.nodes.size());
   state.counters["peak_rss_MB"] = peakRssMb();
 }
-BENCHMARK(BM_Box)->Arg(400)->Arg(200)->Arg(100)->Arg(50)->Arg(35)->Arg(25)->Arg(18)
+BENCHMARK(BM_Box)->Arg(400)->Arg(200)->Arg(100)->Arg(50)->Arg(35)
     ->Unit(benchmark::kMillisecond);
 
 // A structured mesh of a 0.1 x 0.02 m two-ply [30/-30] strip, linear
@@ -110,9 +110,9 @@ void BM_Grid(benchmark::State& state) {
   state.counters["nodes"] = static_cast<double>(mesh.nodes.size());
   state.counters["peak_rss_MB"] = peakRssMb();
 }
-// (nx, quadratic): 2 nx^2 / 5 triangles: 320, 5 120, 20 480, 51 200.
+// (nx, quadratic): 2 nx^2 / 5 triangles: 640, 10 240, 40 960, 100 000.
 BENCHMARK(BM_Grid)->Args({40, 0})->Args({160, 0})->Args({320, 0})->Args({500, 0})
-    ->Args({40, 1})->Args({160, 1})->Args({320, 1})->Args({500, 1})->Unit(benchmark::kMillisecond);
+    ->Args({40, 1})->Args({160, 1})->Args({320, 1})->Unit(benchmark::kMillisecond);
 
 void BM_MH104(benchmark::State& state) {
   static const VabsModel model =
