@@ -9,7 +9,11 @@
 #include <cstdio>
 #include <string>
 
+#include <fstream>
+#include <sstream>
+
 #include "section-prep/cross_section.h"
+#include "section-prep/material_frame.h"
 #include "section-prep/vabs_reader.h"
 #include "vabs_k_file.h"
 
@@ -83,6 +87,57 @@ INSTANTIATE_TEST_SUITE_P(Composite, VabsReference,
                            for (char& c : n) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+}  // namespace
+}  // namespace fc::section
+
+namespace fc::section {
+namespace {
+
+// Anisotropic materials (orth = 2, the 21 upper-triangle stiffnesses in the
+// Voigt order [11, 22, 33, 23, 13, 12], as sgio and SwiftComp write them):
+// an orthotropic ply at theta3 = 30 degrees must give the same section as the
+// same ply entered as its rotated, fully populated stiffness at theta3 = 0.
+// This exercises every coupling position (C16, C26, C36, C45) of the reader.
+TEST(VabsAnisotropic, RotatedStiffnessEqualsRotatedPly) {
+  std::ifstream in(kDir + "sg2_i_simple_eo1.dat");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string layer = "       3       2  0.000000000000e+00\n";
+  const std::string mat2 =
+      "       2       1  ! material id, anisotropy\n"
+      "  3.760000000000e+10  9.584000000000e+09  9.584000000000e+09\n"
+      "  4.081000000000e+09  4.081000000000e+09  4.081000000000e+09\n"
+      "  2.600000000000e-01  2.600000000000e-01  1.742220044107e-01\n";
+  ASSERT_NE(text.find(layer), std::string::npos);
+  ASSERT_NE(text.find(mat2), std::string::npos);
+
+  std::string rotated_ply = text;
+  rotated_ply.replace(rotated_ply.find(layer), layer.size(), "       3       2  30.0\n");
+
+  const Matrix6d C = orthotropicStiffness(3.76e10, 9.584e9, 9.584e9, 4.081e9, 4.081e9, 4.081e9,
+                                          0.26, 0.26, 0.1742220044107);
+  const double t = 30.0 * M_PI / 180;
+  const Matrix6d Cr = rotateVoigtStiffness(C, materialAxes(0.0, t));
+  std::ostringstream aniso;
+  aniso.precision(17);
+  aniso << "       2       2\n";
+  for (int i = 0; i < 6; ++i) {
+    for (int j = i; j < 6; ++j) aniso << " " << Cr(i, j);
+    aniso << "\n";
+  }
+  std::string rotated_stiffness = text;
+  rotated_stiffness.replace(rotated_stiffness.find(mat2), mat2.size(), aniso.str());
+
+  const auto a = analyzeSection(parseVabs(rotated_ply, "ply30").mesh);
+  const auto b = analyzeSection(parseVabs(rotated_stiffness, "aniso").mesh);
+  EXPECT_LT(diagonalRelativeError(b.timoshenko, a.timoshenko), 1e-12);
+  EXPECT_LT(diagonalRelativeError(b.mass, a.mass), 1e-14);
+  // The rotated ply really couples something the 0-degree ply does not.
+  const auto c = analyzeSection(parseVabs(text, "ply0").mesh);
+  EXPECT_GT(diagonalRelativeError(a.timoshenko, c.timoshenko), 1e-3);
+}
 
 }  // namespace
 }  // namespace fc::section
