@@ -11,32 +11,6 @@ Eigen::Vector2d bubbleGradient(const TriangleGeometry& g, int k, const Eigen::Ve
   return 4.0 * (L(j) * g.grad.row(k) + L(k) * g.grad.row(j)).transpose();
 }
 
-Eigen::Matrix2d bubbleHessian(const TriangleGeometry& g, int k) {
-  const int j = (k + 1) % 3;
-  const Eigen::Vector2d gi = g.grad.row(k).transpose(), gj = g.grad.row(j).transpose();
-  return 4.0 * (gi * gj.transpose() + gj * gi.transpose());
-}
-
-// Shear forces T = G dbeta from moment equilibrium: only the bubbles have
-// second derivatives.
-Eigen::Matrix<double, 2, 3> shearForceOperator(const TriangleGeometry& g,
-                                               const Eigen::Matrix3d& D) {
-  Eigen::Matrix<double, 2, 3> G;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Matrix2d h = bubbleHessian(g, k);
-    const double tx = g.tangent(k, 0), ty = g.tangent(k, 1);
-    // beta_a,bc = h(b,c) t_a
-    const double bx_xx = h(0, 0) * tx, bx_xy = h(0, 1) * tx, bx_yy = h(1, 1) * tx;
-    const double by_xx = h(0, 0) * ty, by_xy = h(0, 1) * ty, by_yy = h(1, 1) * ty;
-    const Eigen::Vector3d kappa_x(bx_xx, by_xy, bx_xy + by_xx);
-    const Eigen::Vector3d kappa_y(bx_xy, by_yy, bx_yy + by_xy);
-    const Eigen::Vector3d Mx = D * kappa_x, My = D * kappa_y;
-    G(0, k) = Mx(0) + My(2);
-    G(1, k) = Mx(2) + My(1);
-  }
-  return G;
-}
-
 }  // namespace
 
 DiscretePlateTriangle::DiscretePlateTriangle(const TriangleGeometry& g,
@@ -57,18 +31,48 @@ DiscretePlateTriangle::DiscretePlateTriangle(const TriangleGeometry& g,
       R(k, 3 * n + 2) -= 0.5 * tx;
     }
   }
-  Eigen::Matrix3d A = (2.0 / 3.0) * Eigen::Matrix3d::Identity();
-  Eigen::Matrix<double, 2, 3> shear_of_dbeta = Eigen::Matrix<double, 2, 3>::Zero();
+  // Side-wise shear relation: along side k the plate is a Timoshenko strip,
+  // T_s = D_ss beta_s,ss with beta_s,ss = -8 dbeta_k / l^2 (the bubble), so
+  //   gamma_sk = -(8 D_ss / (As_ss l^2)) dbeta_k,
+  // D_ss = r^T D r, r = [t_x^2, t_y^2, 2 t_x t_y] (bending stiffness for
+  // curvature along t) and As_ss = t^T As t. Each dbeta_k then depends only on
+  // its own side, as in DKT, which keeps beta conforming between elements.
+  Eigen::Vector3d a = Eigen::Vector3d::Constant(2.0 / 3.0);
   if (shear_) {
-    Eigen::LLT<Eigen::Matrix2d> llt(As_);
-    if (llt.info() != Eigen::Success || As_.determinant() <= 0.0)
+    if (As_.llt().info() != Eigen::Success || As_.determinant() <= 0.0)
       throw std::invalid_argument(
           "DST triangle: the transverse shear stiffness As must be positive definite");
-    shear_of_dbeta = llt.solve(shearForceOperator(g, D_));  // gamma = As^-1 G dbeta
-    A -= g.tangent * shear_of_dbeta;                         // gamma_sk = t_k . gamma
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d t = g.tangent.row(k).transpose();
+      const Eigen::Vector3d r(t(0) * t(0), t(1) * t(1), 2.0 * t(0) * t(1));
+      a(k) += 8.0 * r.dot(D_ * r) / (t.dot(As_ * t) * g.side_length(k) * g.side_length(k));
+    }
   }
-  H_ = A.partialPivLu().solve(R);
-  if (shear_) Bs_ = shear_of_dbeta * H_;
+  H_ = a.cwiseInverse().asDiagonal() * R;
+  if (shear_) {
+    // Side shear strains from the constraint, gamma_s = (2/3) dbeta - R, and the
+    // linear field gamma = c + b (-(y - yc), x - xc) whose tangential component
+    // is constant on every side and equal to gamma_sk there (rotated Raviart-
+    // Thomas field, the assumed shear of DKMT / MITC3).
+    Eigen::Matrix3d Tm;
+    const Eigen::Vector2d xc = g.xy.colwise().mean().transpose();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d d = g.xy.row(k).transpose() - xc;
+      Tm(k, 0) = g.tangent(k, 0);
+      Tm(k, 1) = g.tangent(k, 1);
+      Tm(k, 2) = d(0) * g.tangent(k, 1) - d(1) * g.tangent(k, 0);
+    }
+    shear_coef_ = Tm.partialPivLu().solve((2.0 / 3.0) * H_ - R);
+  }
+}
+
+Eigen::Matrix<double, 2, 9> DiscretePlateTriangle::shearStrain(const Eigen::Vector3d& L) const {
+  if (!shear_) return Eigen::Matrix<double, 2, 9>::Zero();
+  const Eigen::Vector2d x =
+      g_.xy.transpose() * L - g_.xy.colwise().mean().transpose();
+  Eigen::Matrix<double, 2, 3> P;
+  P << 1.0, 0.0, -x(1), 0.0, 1.0, x(0);
+  return P * shear_coef_;
 }
 
 Eigen::Matrix<double, 3, 9> DiscretePlateTriangle::curvature(const Eigen::Vector3d& L) const {
@@ -103,7 +107,12 @@ Matrix9d DiscretePlateTriangle::stiffness() const {
     const Eigen::Matrix<double, 3, 9> B = curvature(rule[q].L);
     K += (rule[q].weight_fraction * g_.area) * B.transpose() * D_ * B;
   }
-  if (shear_) K += g_.area * Bs_.transpose() * As_ * Bs_;
+  if (shear_) {
+    for (int q = 0; q < 3; ++q) {
+      const Eigen::Matrix<double, 2, 9> Bs = shearStrain(rule[q].L);
+      K += (rule[q].weight_fraction * g_.area) * Bs.transpose() * As_ * Bs;
+    }
+  }
   return K;
 }
 

@@ -29,8 +29,8 @@ class DiscretePlateTriangle {
 
   // kappa = curvature(L) * u at area coordinates L; u = 9 bending DOF.
   Eigen::Matrix<double, 3, 9> curvature(const Eigen::Vector3d& L) const;
-  // gamma = [gamma_xz, gamma_yz] = shearStrain() * u (constant; zero for DKT).
-  const Eigen::Matrix<double, 2, 9>& shearStrain() const { return Bs_; }
+  // gamma = [gamma_xz, gamma_yz] = shearStrain(L) * u (linear; zero for DKT).
+  Eigen::Matrix<double, 2, 9> shearStrain(const Eigen::Vector3d& L) const;
   // dbeta = sideRotations() * u: the tangential bubble amplitudes.
   const Eigen::Matrix<double, 3, 9>& sideRotations() const { return H_; }
 
@@ -43,7 +43,7 @@ class DiscretePlateTriangle {
   Eigen::Matrix2d As_;
   bool shear_;
   Eigen::Matrix<double, 3, 9> H_;
-  Eigen::Matrix<double, 2, 9> Bs_ = Eigen::Matrix<double, 2, 9>::Zero();
+  Eigen::Matrix<double, 3, 9> shear_coef_ = Eigen::Matrix<double, 3, 9>::Zero();
 };
 
 }  // namespace fc::fe

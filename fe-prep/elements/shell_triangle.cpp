@@ -44,8 +44,11 @@ Matrix18d localStiffness(const TriangleGeometry& g, const LaminateStiffness& lam
     for (int c = 0; c < 9; ++c) B.block<3, 1>(3, ben[c]) = Bb.col(c);
     K += (rule[q].weight_fraction * g.area) * B.transpose() * ABD * B;
   }
-  const Eigen::Matrix<double, 2, 9>& Bs = plate.shearStrain();
-  const Eigen::Matrix<double, 9, 9> Ks = g.area * Bs.transpose() * lam.As * Bs;
+  Eigen::Matrix<double, 9, 9> Ks = Eigen::Matrix<double, 9, 9>::Zero();
+  for (int q = 0; q < 3; ++q) {
+    const Eigen::Matrix<double, 2, 9> Bs = plate.shearStrain(rule[q].L);
+    Ks += (rule[q].weight_fraction * g.area) * Bs.transpose() * lam.As * Bs;
+  }
   for (int r = 0; r < 9; ++r)
     for (int c = 0; c < 9; ++c) K(ben[r], ben[c]) += Ks(r, c);
 

@@ -69,11 +69,10 @@ TEST_P(ShellKinds, FreeElementHasExactlySixRigidBodyModes) {
 // nodes get the exact values of a field of constant membrane strain and constant
 // curvature; the interior node must reproduce the field exactly (Irons patch test;
 // for DKT/DST Batoz, Bathe & Ho 1980, Batoz & Lardeur 1989).
-void patchTest(ShellKind kind, bool membrane, bool bending) {
+void patchTest(ShellKind kind, const LaminateStiffness& lam, bool membrane, bool bending) {
   const Eigen::Matrix3d Q = tilt();
   std::vector<Eigen::Vector2d> p = {{0, 0}, {2.0, 0.1}, {2.2, 1.7}, {-0.1, 1.5}, {0.9, 0.7}};
   const std::vector<std::array<int, 3>> tri = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
-  const LaminateStiffness lam = coupledLaminate(0.01);
   // Local field: u = e.x (eps_x = 1e-3, eps_y = -4e-4, gamma_xy = 6e-4),
   // w = (kx x^2 + kxy x y + ky y^2)/2 with theta_x = w_,y, theta_y = -w_,x.
   const double ex = 1e-3, ey = -4e-4, gxy = 6e-4, kx = 0.02, ky = -0.013, kxy = 0.017;
@@ -111,9 +110,21 @@ void patchTest(ShellKind kind, bool membrane, bool bending) {
                                              << ref.transpose();
 }
 
-TEST_P(ShellKinds, PatchTestConstantMembraneStrain) { patchTest(GetParam(), true, false); }
-TEST_P(ShellKinds, PatchTestConstantCurvature) { patchTest(GetParam(), false, true); }
-TEST_P(ShellKinds, PatchTestCombinedWithCoupling) { patchTest(GetParam(), true, true); }
+// Both kinds with the fully coupled laminate (B != 0, anisotropic D and As),
+// h/l ~ 0.01 (thin), and DST also with a thick one (h/l ~ 0.1) where its
+// shear terms are large.
+TEST_P(ShellKinds, PatchTestConstantMembraneStrain) {
+  patchTest(GetParam(), coupledLaminate(0.005), true, false);
+}
+TEST_P(ShellKinds, PatchTestConstantCurvature) {
+  patchTest(GetParam(), coupledLaminate(0.005), false, true);
+}
+TEST_P(ShellKinds, PatchTestCombinedWithCoupling) {
+  patchTest(GetParam(), coupledLaminate(0.005), true, true);
+}
+TEST_P(ShellKinds, PatchTestThickCombinedWithCoupling) {
+  patchTest(GetParam(), coupledLaminate(0.1), true, true);
+}
 
 INSTANTIATE_TEST_SUITE_P(Elements, ShellKinds, ::testing::Values(ShellKind::DKT, ShellKind::DST),
                          [](const auto& info) {
