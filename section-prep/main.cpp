@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const SectionProperties p = analyzeSection(mesh, opt);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    progress.finish("done");
+    progress.finish();
     std::vector<std::string> inputs{input};
     writeSectionFile(output, p, fc::sha256Files(inputs), input);
     if (!quiet) {
