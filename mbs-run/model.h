@@ -125,6 +125,13 @@ struct Settings {
   // frequency and damping ratio (Bayo & Ledesma: omega = 10, xi = 1).
   double penalty = 1.0e6;
   double omega = 10.0, xi = 1.0;
+  // Most multiplier updates per acceleration solve. Far from singularities
+  // two reach rounding level (penalty 1e6); a small fixed cap keeps the
+  // nearly dependent rows of a singular configuration penalty-regularised in
+  // a way that is smooth in the state: a converged solve (or a state-dependent
+  // stopping rule) let the SAR knee be captured at its toggle or stall the
+  // step control there (docs/mbs-run.md).
+  int multiplier_iterations = 3;
 };
 
 struct Model {

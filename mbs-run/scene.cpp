@@ -332,7 +332,7 @@ Event parseEvent(const Model& m, const InputNode& e) {
 
 void parseSimulation(const InputNode& s, Settings& st) {
   s.allowKeys({"t_end", "output_step", "rtol", "atol", "integrator", "max_step", "penalty",
-               "stabilization_frequency", "stabilization_damping"});
+               "stabilization_frequency", "stabilization_damping", "multiplier_iterations"});
   st.t_end = s["t_end"].asPositive();
   st.output_step = s.has("output_step") ? s["output_step"].asPositive() : st.t_end / 100.0;
   if (s.has("rtol")) {
@@ -344,6 +344,11 @@ void parseSimulation(const InputNode& s, Settings& st) {
   if (s.has("penalty")) st.penalty = s["penalty"].asPositive();
   if (s.has("stabilization_frequency")) st.omega = s["stabilization_frequency"].asNonNegative();
   if (s.has("stabilization_damping")) st.xi = s["stabilization_damping"].asNonNegative();
+  if (s.has("multiplier_iterations")) {
+    const long k = s["multiplier_iterations"].asInt();
+    if (k < 1 || k > 100) s["multiplier_iterations"].fail("expected 1 to 100, got " + std::to_string(k));
+    st.multiplier_iterations = static_cast<int>(k);
+  }
   const std::string integ = s.string("integrator", "auto");
   if (integ == "auto") st.integrator = IntegratorKind::Auto;
   else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;

@@ -252,7 +252,8 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
   const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
-  const AlResult r = solver_.accelerations(M_, Phi_v_, Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()), 30);
+  const AlResult r = solver_.accelerations(M_, Phi_v_, Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
+                                                model_.settings.multiplier_iterations);
   lambda_ = r.lambda;
   stats_.al_iterations += r.iterations;
   stats_.max_al_iterations = std::max(stats_.max_al_iterations, r.iterations);
