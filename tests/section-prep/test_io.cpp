@@ -118,6 +118,22 @@ TEST(VabsReader, FortranExponentsAndOneSquare) {
   EXPECT_DOUBLE_EQ(p.mass_per_length, 2.0);
 }
 
+TEST(VabsErrors, DisconnectedSectionIsRefused) {
+  // Two separate unit squares: the warping problem has eight rigid modes, and
+  // silently pinning four would give a wrong answer, so it must stop.
+  const std::string text =
+      "1 1\n1 0 0\n0 0 0 0\n8 2 1\n"
+      "1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 3 0\n6 4 0\n7 4 1\n8 3 1\n"
+      "1 1 2 3 4 0 0 0 0 0\n2 5 6 7 8 0 0 0 0 0\n1 1 0\n2 1 0\n1 1 0\n1 0\n1e9 0.3\n1\n";
+  const VabsModel m = parseVabs(text, "two.sg");
+  try {
+    analyzeSection(m.mesh);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not one connected body"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Examples, SarAntennaSectionsLoadAndSolve) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(FLEXCOMP_SOURCE_DIR) / "examples/sar-antenna/sections";
