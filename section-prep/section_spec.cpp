@@ -71,7 +71,11 @@ SectionSpec readSectionSpec(const InputNode& root) {
   const MaterialLibrary lib = readMaterials(root["materials"]);
   LaminateLibrary lams;
   if (root.has("laminates")) lams = readLaminates(root["laminates"], lib);
-  const InputNode s = root["section"];
+  return readSectionSpec(root["section"], lib, lams);
+}
+
+SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
+                            const LaminateLibrary& lams) {
   SectionSpec spec;
   std::map<std::string, int> index;
   const std::string shape = s["shape"].asString();

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "common/input.h"
+#include "common/laminate.h"
+#include "common/materials.h"
 #include "section-prep/section_mesh.h"
 
 namespace fc::section {
@@ -28,6 +30,11 @@ struct SectionSpec {
 
 // Reads `materials:` (and `laminates:` if present) and `section:` from the root.
 SectionSpec readSectionSpec(const InputNode& root);
+
+// Reads a `section:` block against libraries read elsewhere: for tools that
+// embed a section in their own input (fe-prep's `beam: {section: {shape: ...}}`).
+SectionSpec readSectionSpec(const InputNode& section, const MaterialLibrary& materials,
+                            const LaminateLibrary& laminates = {});
 
 // The automatic element size: a twentieth of the section's smallest outer
 // dimension, and no larger than the thinnest ply so each ply gets elements.
