@@ -43,8 +43,10 @@ int main(int argc, char** argv) {
     using namespace fc::section;
     SectionMesh mesh;
     AnalysisOptions opt;
+    std::vector<std::string> inputs{input};
     if (isYaml(input)) {
       const SectionSpec spec = readSectionSpec(fc::InputNode::loadFile(input));
+      if (!spec.mesh_file.empty()) inputs.push_back(spec.mesh_file);
       if (!quiet) std::cerr << "section-prep: meshing with gmsh\n";
       mesh = meshSection(spec);
     } else {
@@ -58,7 +60,6 @@ int main(int argc, char** argv) {
     const SectionProperties p = analyzeSection(mesh, opt);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     progress.finish();
-    std::vector<std::string> inputs{input};
     writeSectionFile(output, p, fc::sha256Files(inputs), input);
     if (!quiet) {
       printSummary(std::cout, p);
