@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figures 8 and 9 of Neto, Ambrosio & Leal (CMAME 2006) from an mbs-run results file.
 
-  /usr/bin/python3 plot_results.py RESULTS.h5 [OUTDIR] [--label NAME]
+  /usr/bin/python3 plot_results.py RESULTS.h5 [OUTDIR] [--label NAME] [--compare OTHER.h5:LABEL ...]
 
 Writes OUTDIR/sar_fig8_actuator_angle.png (R3 angle, phase 1),
 OUTDIR/sar_fig9_panel3_omega.png (panel 3 angular velocity about the hinge
@@ -28,8 +28,18 @@ def main():
     ap.add_argument("outdir", nargs="?", default=".")
     ap.add_argument("--label", default="rigid (this reconstruction)")
     ap.add_argument("--phase1-end", type=float, default=10.0)
+    ap.add_argument("--compare", action="append", default=[],
+                    help="another results file drawn on Figures 8 and 9, as FILE:LABEL")
     a = ap.parse_args()
     os.makedirs(a.outdir, exist_ok=True)
+    others = []
+    for spec in a.compare:
+        path, _, label = spec.partition(":")
+        with h5py.File(path, "r") as g:
+            tt = g["time"][:]
+            keep = tt <= a.phase1_end + 1e-9
+            others.append((label or path, tt[keep], g["joints/R3/angle"][:][keep],
+                           g["bodies/B3/angular_velocity"][:, 1][keep]))
 
     with h5py.File(a.results, "r") as f:
         t = f["time"][:]
@@ -45,8 +55,11 @@ def main():
 
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     ax.plot(t[p1], r3[p1], label=a.label)
+    for label, tt, rr, _ in others:
+        kk = np.argmin(np.abs(rr))
+        ax.plot(tt, rr, label=f"{label} (alignment {tt[kk]:.2f} s)")
     ax.axvline(PAPER_ALIGNMENT_S, color="gray", ls="--", lw=0.8, label="paper: alignment at 5.5 s")
-    ax.plot([t[k]], [r3[k]], "o", color="C3", label=f"alignment here: {t[k]:.2f} s")
+    ax.plot([t[k]], [r3[k]], "o", color="C3", label=f"alignment ({a.label}): {t[k]:.2f} s")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("actuator (R3) angle [rad]")
@@ -58,6 +71,8 @@ def main():
 
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     ax.plot(t[p1], w3[p1], label=a.label)
+    for label, tt, _, ww in others:
+        ax.plot(tt, ww, label=label, lw=0.8)
     ax.axvline(PAPER_ALIGNMENT_S, color="gray", ls="--", lw=0.8, label="paper: alignment at 5.5 s")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel("time [s]")
