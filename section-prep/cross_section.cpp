@@ -13,6 +13,9 @@
 #include <vector>
 
 #include "section-prep/material_frame.h"
+#ifdef FLEXCOMP_SECTION_EIGEN_BLAS
+#include "section-prep/dense_kernels.h"
+#endif
 #include "section-prep/shape_functions.h"
 #include "section-prep/sparse_pattern.h"
 
@@ -355,6 +358,10 @@ class ConstrainedSolver {
       for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
         if (is_pinned[it.row()] || is_pinned[it.col()])
           it.valueRef() = (it.row() == it.col()) ? 1.0 : 0.0;
+#ifdef FLEXCOMP_SECTION_EIGEN_BLAS
+    static const bool kernels = eigenDenseKernelsLinked();
+    (void)kernels;
+#endif
     solver_.compute(K);
     K.resize(0, 0);
     K.data().squeeze();
