@@ -1,6 +1,8 @@
 #pragma once
-// Bending part of the flat triangle: DKT (Batoz, Bathe & Ho 1980) and DST
-// (Batoz & Lardeur 1989), written in area coordinates.
+// Bending part of the flat triangle: DKT (Batoz, Bathe & Ho 1980) and DST, the
+// discrete shear triangle (Batoz & Lardeur 1989) in its side-local form (Katili
+// 1993, "DKMT"; Katili, Maknun, Batoz & Katili 2019 compare both), written in
+// area coordinates.
 //
 // Local bending DOF per node [w, theta_x, theta_y] (rotation vector). The normal
 // rotations beta (u = z beta_x, v = z beta_y) are beta_x = theta_y,
@@ -9,9 +11,12 @@
 // the bubble on side k pointing along its tangent t_k (so the normal rotation is
 // linear along each side). The side unknowns dbeta_k follow from the discrete
 // constraint   int_side (w_,s + beta_s) ds = l_k gamma_sk,   with w cubic along
-// the side; gamma_sk = 0 gives DKT, and DST takes gamma = As^-1 T with the shear
-// forces T from moment equilibrium T_x = M_x,x + M_xy,y, T_y = M_xy,x + M_y,y
-// (constant, because M = D kappa is linear). See docs/elements.md.
+// the side. DKT: gamma_sk = 0. DST: gamma_sk from the side's own Timoshenko
+// relation gamma_sk = -(8 D_ss / (As_ss l_k^2)) dbeta_k, and the element's shear
+// strain is the linear field whose tangential component on side k is gamma_sk.
+// The original DST takes gamma from the element's moment equilibrium instead;
+// that couples the three sides, and then fails the constant-curvature patch test
+// (measured here; see docs/elements.md), hence the side-local form.
 #include <Eigen/Dense>
 
 #include "fe-prep/elements/triangle_geometry.h"

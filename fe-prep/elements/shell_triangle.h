@@ -1,8 +1,10 @@
 #pragma once
-// Flat laminated shell triangle: DST bending (Batoz & Lardeur 1989; reduces to
-// DKT, Batoz, Bathe & Ho 1980, for thin plates), constant-strain membrane with
+// Flat laminated shell triangle: DST bending (discrete shear triangle, Batoz &
+// Lardeur 1989, in the side-local form of Katili 1993; reduces to DKT, Batoz,
+// Bathe & Ho 1980, for thin plates), constant-strain membrane with
 // membrane-bending coupling (B), and a small fictitious drilling stiffness so
-// that coplanar nodes do not leave K singular (paper, section 3.2).
+// that coplanar nodes do not leave K singular (paper, section 3.2). Theory,
+// conventions and validation: docs/elements.md.
 //
 // Degrees of freedom, 6 per node, in the BODY frame: [u1 u2 u3 theta1 theta2 theta3]
 // with theta the small rotation vector (right-handed about the body axes), the

@@ -6,13 +6,13 @@
 namespace fc::fe::test {
 
 // Classical (Kirchhoff) simply supported rectangular plate, specially orthotropic
-// (D16 = D26 = 0) (Reddy 2nd ed. eq. 5.3.x / Leissa 1969 for isotropic):
+// (D16 = D26 = 0) (Reddy 2004, ch. 5 Navier solution; Leissa 1969 for isotropic):
 //   omega^2 = pi^4 [D11 (m/a)^4 + 2 (D12 + 2 D66) (m/a)^2 (n/b)^2 + D22 (n/b)^4] / I0.
 double navierClassicalOmega(const Eigen::Matrix3d& D, double I0, double a, double b, int m,
                            int n);
 
 // First-order shear deformation (Mindlin) Navier solution of a simply supported
-// cross-ply plate with B = 0 (Reddy 2nd ed. section 6.x): the lowest root of the
+// cross-ply plate with B = 0 (Reddy 2004, ch. 6 Navier solution): the lowest root of the
 // 3x3 problem in (W, X, Y) with rotary inertia I2.
 double navierMindlinOmega(const Eigen::Matrix3d& D, const Eigen::Matrix2d& As, double I0,
                          double I2, double a, double b, int m, int n);

@@ -7,6 +7,7 @@
 
 #include "fe-prep/elements/shell_triangle.h"
 #include "laminates.h"
+#include "plate_model.h"
 
 namespace fc::fe {
 namespace {
@@ -216,6 +217,24 @@ TEST(ShellFrame, StiffnessEigenvaluesDoNotDependOnPlacement) {
   Eigen::SelfAdjointEigenSolver<Matrix18d> ea(a.K, Eigen::EigenvaluesOnly), eb(b.K, Eigen::EigenvaluesOnly);
   EXPECT_LT((ea.eigenvalues() - eb.eigenvalues()).cwiseAbs().maxCoeff(),
             1e-10 * ea.eigenvalues().maxCoeff());
+}
+
+// A flat mesh leaves the drilling rotations without physical stiffness; the
+// drilling penalty must make the assembled free-free K singular only in the six
+// rigid-body modes (paper, section 3.2), for both element kinds.
+TEST(ShellAssembly, FlatFreeMeshHasOnlySixZeroEnergyModes) {
+  const LaminateStiffness lam = coupledLaminate(0.01);
+  const test::PlateMesh mesh = test::rectangleMesh(1.0, 0.7, 4, 3);
+  for (ShellKind kind : {ShellKind::DKT, ShellKind::DST}) {
+    const test::Assembled sys = test::assembleShell(mesh, lam, kind, true);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(sys.K, Eigen::EigenvaluesOnly);
+    const Eigen::VectorXd& ev = es.eigenvalues();
+    const double top = ev(ev.size() - 1);
+    for (int i = 0; i < 6; ++i) EXPECT_LT(std::abs(ev(i)), 1e-11 * top) << i;
+    // The softest deformation (a drilling mode, 1e-4 of a bending stiffness
+    // that is ~(h/l)^2 ~ 1e-3 of the membrane one) is many decades above roundoff.
+    EXPECT_GT(ev(6), 1e-10 * top);
+  }
 }
 
 TEST(ShellInput, RejectsDegenerateTriangleAndNormalFibreDirection) {
