@@ -15,6 +15,16 @@ void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, dou
   ok_ = ldlt_.info() == Eigen::Success;
 }
 
+void AlSolver::factorizeAssembled(const SparseMatrixd& K, double alpha, bool same_pattern) {
+  alpha_ = alpha;
+  if (!same_pattern || !analyzed_) {
+    ldlt_.analyzePattern(K);
+    analyzed_ = true;
+  }
+  ldlt_.factorize(K);
+  ok_ = ldlt_.info() == Eigen::Success;
+}
+
 namespace {
 // Multiplier iteration for  K x = b - Phi^T (mu + a g),  mu += a (Phi x + g),
 // K = M + a Phi^T Phi, converging to M x = b - Phi^T mu with Phi x + g = 0 (in

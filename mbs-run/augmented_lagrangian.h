@@ -29,6 +29,9 @@ class AlSolver {
  public:
   // Factorises M + alpha Phi_v^T Phi_v. `same_pattern` skips the symbolic step.
   void factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, double alpha, bool same_pattern);
+  // Factorises K = M + alpha Phi_v^T Phi_v assembled by the caller (block by
+  // block is much cheaper than the general sparse product for small systems).
+  void factorizeAssembled(const SparseMatrixd& K, double alpha, bool same_pattern);
   // The iteration above; stops when the constraint residual no longer improves
   // by a useful factor or is below tol.
   AlResult accelerations(const SparseMatrixd& M, const SparseMatrixd& Phi_v,

@@ -101,10 +101,14 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
   phit_.setZero(m);
   c_.setZero(m);
   trip_.clear();
-  ConstraintRows rows;
+  joint_rows_.resize(model_.joints.size());
   for (std::size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];
-    if (!joints_[j].enabled) continue;
+    ConstraintRows& rows = joint_rows_[j];
+    if (!joints_[j].enabled) {
+      rows.resize(0, 0, 0);
+      continue;
+    }
     jointConstraints(jt, joints_[j], P[jt.body_i], P[jt.body_j], t, rows);
     const int r0 = row_of_joint_[j];
     phi_.segment(r0, rows.size()) = rows.phi;
@@ -123,6 +127,7 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
 }
 
 void System::assembleMass(const std::vector<BodyPose>& P) {
+  std::vector<Eigen::Triplet<double>>& trip_ = mass_trip_;
   trip_.clear();
   Qv_.setZero(model_.nv);
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
@@ -148,14 +153,51 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
 }
 
 void System::factorize() {
-  // The symbolic analysis is kept while the pattern of M + a Phi^T Phi is the
-  // same; its signature is the pattern's size and a checksum of its indices.
-  long sig = Phi_v_.rows() * 1000003L + Phi_v_.nonZeros();
-  for (Eigen::Index k = 0; k < Phi_v_.outerSize() + 1; ++k)
-    sig = sig * 31 + Phi_v_.outerIndexPtr()[k];
-  const bool same = sig == pattern_signature_;
+  // K = M + a Phi_v^T Phi_v assembled from the joints' dense blocks: each joint
+  // adds a Ji^T Ji, a Ji^T Jj, a Jj^T Ji, a Jj^T Jj to its bodies' blocks. The
+  // entries are visited in a fixed order; while the pattern (active joints and
+  // their row counts) is unchanged they are added straight into K's value array
+  // at slots found once, and the symbolic analysis is kept.
+  const double a = penalty();
+  long sig = Phi_v_.rows();
+  for (const ConstraintRows& rows : joint_rows_) sig = sig * 31 + rows.size();
+  const bool same = sig == pattern_signature_ && K_.nonZeros() > 0;
   pattern_signature_ = sig;
-  solver_.factorize(M_, Phi_v_, penalty(), same);
+
+  std::vector<Eigen::Triplet<double>> kt;
+  std::size_t slot = 0;
+  if (same) K_.coeffs().setZero();
+  auto emit = [&](int r, int c, double v) {
+    if (same) K_.valuePtr()[k_slots_[slot++]] += v;
+    else kt.emplace_back(r, c, v);
+  };
+  for (const auto& t : mass_trip_) emit(t.row(), t.col(), t.value());
+  auto block = [&](int ri, int ci, const Eigen::MatrixXd& B) {
+    for (Eigen::Index c = 0; c < B.cols(); ++c)
+      for (Eigen::Index r = 0; r < B.rows(); ++r) emit(ri + int(r), ci + int(c), a * B(r, c));
+  };
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const ConstraintRows& rows = joint_rows_[j];
+    if (rows.size() == 0) continue;
+    const Joint& jt = model_.joints[j];
+    const Body &bi = model_.bodies[jt.body_i], &bj = model_.bodies[jt.body_j];
+    if (!bi.fixed) block(bi.dof_index, bi.dof_index, rows.Ji.transpose() * rows.Ji);
+    if (!bj.fixed) block(bj.dof_index, bj.dof_index, rows.Jj.transpose() * rows.Jj);
+    if (!bi.fixed && !bj.fixed) {
+      const Eigen::MatrixXd C = rows.Ji.transpose() * rows.Jj;
+      block(bi.dof_index, bj.dof_index, C);
+      block(bj.dof_index, bi.dof_index, C.transpose());
+    }
+  }
+  if (!same) {
+    K_.resize(model_.nv, model_.nv);
+    K_.setFromTriplets(kt.begin(), kt.end());
+    K_.makeCompressed();
+    k_slots_.resize(kt.size());
+    for (std::size_t k = 0; k < kt.size(); ++k)
+      k_slots_[k] = &K_.coeffRef(kt[k].row(), kt[k].col()) - K_.valuePtr();
+  }
+  solver_.factorizeAssembled(K_, a, same);
 }
 
 void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q, double& dissipation,

@@ -87,7 +87,10 @@ class System {
   std::vector<int> row_of_joint_;
   // Workspace.
   std::vector<BodyPose> P_;
-  SparseMatrixd M_, Phi_v_;
+  SparseMatrixd M_, Phi_v_, K_;
+  std::vector<Eigen::Triplet<double>> mass_trip_;
+  std::vector<ConstraintRows> joint_rows_;  // rows of each joint, from the last assembly
+  std::vector<Eigen::Index> k_slots_;       // value index in K_ of each assembled entry
   Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;
   std::vector<Eigen::Triplet<double>> trip_;
   AlSolver solver_;
