@@ -2,7 +2,10 @@
 // against the same section built as shape: rectangle with plies.
 #include <gtest/gtest.h>
 
+#include <gmsh.h>
+
 #include <cmath>
+#include <filesystem>
 
 #include "common/input.h"
 #include "section-prep/cross_section.h"
@@ -40,6 +43,36 @@ TEST(MeshFile, GeoWithPhysicalNamesEqualsParametricPlies) {
   EXPECT_GT(std::abs(from_plies.timoshenko(0, 3)),
             1e-2 * std::sqrt(from_plies.timoshenko(0, 0) * from_plies.timoshenko(3, 3)));
   EXPECT_NEAR(from_geo.mass_per_length, 1550 * 2e-4, 1e-9);
+}
+
+TEST(MeshFile, MshIsUsedAsItIs) {
+  // Mesh the .geo with gmsh (quadratic, 0.8 mm) and save a .msh; reading that
+  // .msh must give exactly the section of meshing the .geo the same way, since
+  // the elements are the same.
+  const std::string dir = std::string(FLEXCOMP_SOURCE_DIR) + "/tests/section-prep/data/";
+  const std::string msh =
+      (std::filesystem::temp_directory_path() / "section_prep_two_ply_strip.msh").string();
+  gmsh::initialize();
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::open(dir + "two_ply_strip.geo");
+  gmsh::vectorpair points;
+  gmsh::model::getEntities(points, 0);
+  gmsh::model::mesh::setSize(points, 0.0008);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 0.0008);
+  gmsh::option::setNumber("Mesh.ElementOrder", 2);
+  gmsh::model::mesh::generate(2);
+  gmsh::write(msh);
+  gmsh::finalize();
+  const auto from_msh = analyzeSection(meshSection(readSectionSpec(
+      InputNode::loadString(kMaterials + "section: {shape: mesh, file: " + msh + "}\n"))));
+  const auto from_geo = analyzeSection(meshSection(readSectionSpec(InputNode::loadString(
+      kMaterials + "section: {shape: mesh, file: " + dir + "two_ply_strip.geo, mesh_size: 0.0008}\n"))));
+  EXPECT_EQ(from_msh.n_elements, from_geo.n_elements);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      EXPECT_NEAR(from_msh.timoshenko(i, j), from_geo.timoshenko(i, j),
+                  1e-9 * std::sqrt(from_geo.timoshenko(i, i) * from_geo.timoshenko(j, j)));
+  std::filesystem::remove(msh);
 }
 
 TEST(MeshFile, UnknownMaterialInAPhysicalNameIsReported) {
