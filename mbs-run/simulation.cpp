@@ -134,6 +134,10 @@ Results simulate(const Model& model, const RunOptions& options) {
 
   fc::Progress progress("mbs-run", t_end, options.quiet);
   double t = 0.0;
+  // Any failure inside the step (a kernel throwing, a singular factorisation
+  // reported as an exception) ends the run with what was computed so far and
+  // a status saying why, as the contract asks of solver failures.
+  try {
   while (t < t_end) {
     if (g_stop_signal.load()) {
       R.status = "interrupted by signal " + std::to_string(g_stop_signal.load());
@@ -202,6 +206,11 @@ Results simulate(const Model& model, const RunOptions& options) {
     integ->reset(t, y);
     if (hit || at_time_event) e_ref = sys.energies(t, y).total();
     progress.update(t, "steps " + std::to_string(integ->steps));
+  }
+  } catch (const std::exception& e) {
+    std::ostringstream msg;
+    msg << "solver failure at t = " << t << ": " << e.what();
+    R.status = msg.str();
   }
   progress.finish();
   R.t_reached = t;

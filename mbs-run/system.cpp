@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/rotations.h"
 #include "mbs-run/flexible/flexible_body.h"
@@ -198,6 +199,9 @@ void System::factorize() {
       k_slots_[k] = &K_.coeffRef(kt[k].row(), kt[k].col()) - K_.valuePtr();
   }
   solver_.factorizeAssembled(K_, a, same);
+  if (!solver_.ok())
+    throw std::runtime_error("the augmented matrix M + a Phi^T Phi could not be factorised "
+                             "(a mass matrix not positive definite, or non-finite state)");
 }
 
 void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q, double& dissipation,
