@@ -112,31 +112,12 @@ class DormandPrince final : public Integrator {
 
  private:
   double errorNorm(const VectorXd& e, const VectorXd& y0, const VectorXd& y1) const {
-    double s = 0.0;
-    int n = 0;
-    for (Eigen::Index i = 0; i < e.size(); ++i) {
-      if (tol_.mask[i] == 0.0) continue;
-      const double sc = tol_.atol + tol_.rtol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-      const double r = e[i] / sc;
-      s += r * r;
-      ++n;
-    }
-    return n ? std::sqrt(s / n) : 0.0;
+    return weightedRmsNorm(e, y0, y1, tol_);
   }
 
   // Hairer's starting step (HINIT): from the sizes of y, f and an Euler probe.
   double initialStep() {
-    VectorXd sc = (tol_.atol + tol_.rtol * y_.cwiseAbs().array()).matrix();
-    auto norm = [&](const VectorXd& v) {
-      double s = 0;
-      int n = 0;
-      for (Eigen::Index i = 0; i < v.size(); ++i)
-        if (tol_.mask[i] != 0.0) {
-          s += (v[i] / sc[i]) * (v[i] / sc[i]);
-          ++n;
-        }
-      return n ? std::sqrt(s / n) : 0.0;
-    };
+    auto norm = [&](const VectorXd& v) { return weightedRmsNorm(v, y_, y_, tol_); };
     const double dnf = norm(k1_), dny = norm(y_);
     double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : 0.01 * dny / dnf;
     if (tol_.max_step > 0) h = std::min(h, tol_.max_step);

@@ -19,6 +19,12 @@ struct Tolerances {
   double max_step = 0.0;  // 0: unlimited
 };
 
+// Root-mean-square of e, each component scaled by atol + rtol max(|y0|, |y1|),
+// over the components the mask keeps: the error norm both integrators control
+// (Hairer, Norsett & Wanner, Solving ODEs I, eq. II.4.11).
+double weightedRmsNorm(const Eigen::VectorXd& e, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1,
+                       const Tolerances& tol);
+
 class Integrator {
  public:
   virtual ~Integrator() = default;

@@ -152,27 +152,9 @@ class TrBdf2 final : public Integrator {
     h_lu_ = -1.0;
   }
 
-  double scaledNorm(const VectorXd& e, const VectorXd& y) const {
-    double s = 0.0;
-    int n = 0;
-    for (Eigen::Index i = 0; i < e.size(); ++i) {
-      if (tol_.mask[i] == 0.0) continue;
-      const double r = e[i] / (tol_.atol + tol_.rtol * std::abs(y[i]));
-      s += r * r;
-      ++n;
-    }
-    return n ? std::sqrt(s / n) : 0.0;
-  }
+  double scaledNorm(const VectorXd& e, const VectorXd& y) const { return weightedRmsNorm(e, y, y, tol_); }
   double errorNorm(const VectorXd& e, const VectorXd& y0, const VectorXd& y1) const {
-    double s = 0.0;
-    int n = 0;
-    for (Eigen::Index i = 0; i < e.size(); ++i) {
-      if (tol_.mask[i] == 0.0) continue;
-      const double r = e[i] / (tol_.atol + tol_.rtol * std::max(std::abs(y0[i]), std::abs(y1[i])));
-      s += r * r;
-      ++n;
-    }
-    return n ? std::sqrt(s / n) : 0.0;
+    return weightedRmsNorm(e, y0, y1, tol_);
   }
 
   Rhs f_;
