@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "../mbs-run/flexible/random_body.h"
+#include "flexible/random_body.h"
 #include "common/flexbody.h"
 #include "common/rotations.h"
 #include "helpers.h"
