@@ -113,4 +113,26 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
   if (progress && rank == 0) progress(1.0);
 }
 
+void addNodalTranslationalMass(MPI_Comm comm, const Mesh& mesh, const DofMap& map, const Eigen::VectorXd& dm, Mat M) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const auto first = nodeOwnership(mesh.nodeCount(), size);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(6, 6), Dr;
+  std::vector<long> idx;
+  std::vector<PetscInt> pidx;
+  Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> buf;
+  for (long k = first[static_cast<std::size_t>(rank)]; k < first[static_cast<std::size_t>(rank) + 1]; ++k) {
+    if (dm(k) == 0.0 || map.count(k) == 0) continue;
+    D.topLeftCorner<3, 3>() = dm(k) * Eigen::Matrix3d::Identity();
+    reduceElement(map, {k}, D, Dr, idx);
+    pidx.assign(idx.begin(), idx.end());
+    buf = Dr;
+    const PetscInt m = static_cast<PetscInt>(pidx.size());
+    check(MatSetValues(M, m, pidx.data(), m, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
+  }
+  check(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
 }  // namespace fc::feprep

@@ -41,4 +41,8 @@ std::vector<long> nodeOwnership(long n_nodes, int ranks);
 void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements, const ElementKernel& kernel,
               AssembledSystem& out, const std::function<void(double)>& progress = {});
 
+// Adds dm_k to the three translational diagonal entries of every node this rank
+// owns (in reduced DOF through the node's T) and re-assembles M.
+void addNodalTranslationalMass(MPI_Comm comm, const Mesh& mesh, const DofMap& map, const Eigen::VectorXd& dm, Mat M);
+
 }  // namespace fc::feprep

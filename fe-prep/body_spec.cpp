@@ -229,8 +229,9 @@ BodySpec parseBodySpec(const InputNode& root) {
   }
   const std::string mass = b.string("mass", "lumped");
   if (mass == "lumped") spec.lumped = true;
+  else if (mass == "lumped_moments") spec.lumped = spec.moment_lumping = true;
   else if (mass == "consistent") spec.lumped = false;
-  else b["mass"].fail("unknown mass '" + mass + "', expected lumped or consistent");
+  else b["mass"].fail("unknown mass '" + mass + "', expected lumped, lumped_moments or consistent");
   return spec;
 }
 

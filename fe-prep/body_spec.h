@@ -55,6 +55,9 @@ struct BodySpec {
   long modes = 0;
   double max_frequency_hz = 0.0;
   bool lumped = true;
+  // mass: lumped_moments: lumped masses moved between nodes so that the body's
+  // mass, first and second moments are exact (mass_lumping.h).
+  bool moment_lumping = false;
   std::vector<std::string> input_files;  // the YAML and every file it uses (for the SHA-256)
 };
 

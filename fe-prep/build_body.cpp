@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include "fe-prep/constraints.h"
 #include "fe-prep/elements/beam_element.h"
 #include "fe-prep/elements/shell_triangle.h"
+#include "fe-prep/mass_lumping.h"
 #include "fe-prep/modal_solver.h"
 #include "fe-prep/panel_mesher.h"
 
@@ -223,6 +225,34 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   Progress pasm("assembly", 1.0, quiet);
   AssembledSystem sys;
   assemble(comm, mesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
+  // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
+  // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal.
+  if (spec.moment_lumping) {
+    const long n = mesh.nodeCount();
+    Eigen::VectorXd m0(n);
+    for (long k = 0; k < n; ++k) m0(k) = sys.lumped(6 * k);
+    RigidProperties mid;
+    if (spec.shell) {
+      LaminateStiffness midsurface = spec.shell->laminate;
+      midsurface.first_moment = 0.0;  // through-thickness terms belong to the rotary inertias
+      midsurface.rotary_per_area = 0.0;
+      mid = shellProperties(mesh, midsurface);
+    } else {
+      Matrix6d axis = Matrix6d::Zero();
+      axis(0, 0) = spec.beam->Ms(0, 0);
+      mid = beamProperties(mesh, axis, kSectionX2);
+    }
+    const MomentLumping ml = momentConsistentMasses(mesh.nodes, m0, mid.mass, mid.first_moment, mid.second_moment);
+    res.moment_lumping = ml.applied;
+    if (!ml.applied && rank == 0)
+      std::fprintf(stderr, "fe-prep: warning: mass: lumped_moments not applied (a nodal mass would fall to %.2f of its row-sum value); row-sum lumped masses kept\n", ml.min_ratio);
+    res.lumping_min_ratio = ml.min_ratio;
+    if (ml.applied) {
+      const Eigen::VectorXd dm = ml.masses - m0;
+      addNodalTranslationalMass(comm, mesh, map, dm, sys.M);
+      for (long k = 0; k < n; ++k) sys.lumped.segment<3>(6 * k).array() += dm(k);
+    }
+  }
   pasm.finish("(" + std::to_string(map.reduced) + " DOF)");
   res.stages.push_back({"assembly", sw.seconds(), peakRssMb()});
 

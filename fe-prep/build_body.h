@@ -26,6 +26,10 @@ struct BuildResult {
   long rigid_removed = 0;
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
+  // Moment-consistent lumping (fe-prep/mass_lumping.h): applied, and the smallest
+  // ratio of a corrected nodal mass to its row-sum value.
+  bool moment_lumping = false;
+  double lumping_min_ratio = 1.0;
   std::vector<StageStats> stages;
 };
 
