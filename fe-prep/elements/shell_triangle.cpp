@@ -81,6 +81,21 @@ Matrix18d localConsistentMass(const TriangleGeometry& g, const LaminateStiffness
   return M;
 }
 
+// T^T A T with T = diag(R, ..., R) (q_local = T q_body), block by block: the
+// dense 18x18 triple product would dominate the element's cost. Symmetrised
+// against roundoff.
+Matrix18d toBody(const Matrix18d& A, const Eigen::Matrix3d& R) {
+  Matrix18d B;
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      const Eigen::Matrix3d b = R.transpose() * A.block<3, 3>(3 * i, 3 * j) * R;
+      const Eigen::Matrix3d bt = R.transpose() * A.block<3, 3>(3 * j, 3 * i) * R;
+      B.block<3, 3>(3 * i, 3 * j) = 0.5 * (b + bt.transpose());
+      B.block<3, 3>(3 * j, 3 * i) = B.block<3, 3>(3 * i, 3 * j).transpose();
+    }
+  return B;
+}
+
 void checkLaminate(const LaminateStiffness& lam) {
   if (!(lam.mass_per_area > 0.0))
     throw std::invalid_argument("shell triangle: laminate mass per area must be positive");
@@ -99,14 +114,9 @@ ShellMatrices shellTriangle(const Eigen::Matrix3d& xyz, const LaminateStiffness&
   const ShellFrame frame = shellFrame(xyz, material_x);
   const TriangleGeometry g = triangleGeometry(frame.xy);
 
-  Matrix18d T = Matrix18d::Zero();  // q_local = T q_body
-  for (int b = 0; b < 6; ++b) T.block<3, 3>(3 * b, 3 * b) = frame.R;
-
   ShellMatrices out;
-  out.K = T.transpose() * localStiffness(g, lam, kind, drilling) * T;
-  out.M = T.transpose() * localConsistentMass(g, lam) * T;
-  out.K = 0.5 * (out.K + out.K.transpose()).eval();
-  out.M = 0.5 * (out.M + out.M.transpose()).eval();
+  out.K = toBody(localStiffness(g, lam, kind, drilling), frame.R);
+  out.M = toBody(localConsistentMass(g, lam), frame.R);
 
   // Lumped: a third of the mass at each node; the rotary inertia of the
   // thickness, I2 A/3 (1 - n n^T) per node, is diagonal only in a frame
