@@ -29,7 +29,7 @@ using Mat4 = Eigen::Matrix<double, Eigen::Dynamic, 4, 0, 27, 4>;
 using Matrix64d = Eigen::Matrix<double, 6, 4>;
 using DenseN4 = Eigen::Matrix<double, Eigen::Dynamic, 4>;
 
-// The discretised energy of Hodges (2006) eq. 4.xx with the warping w = S V:
+// The discretised energy of Hodges (2006), ch. 4, with the warping w = S V:
 //   2U = V'E V + 2 V'Dhe e + e'Dee e + 2 V'Dhl V' + 2 V''Dle e + V''Dll V'
 // (primes on V: d/dx1), e = [gamma11, kappa1, kappa2, kappa3].
 struct Assembled {
@@ -99,7 +99,7 @@ void checkConnected(const SparsePattern& p, long n_nodes, const std::vector<char
                              "join the parts or analyse them separately");
 }
 
-// Strains in Voigt order [11, 22, 33, 23, 13, 12] (Hodges 2006, eq. 4.xx):
+// Strains in Voigt order [11, 22, 33, 23, 13, 12] (Hodges 2006, ch. 4):
 //   Gamma = Gamma_h w + Gamma_e e + Gamma_l w',   w = sum_a N_a V_a,
 // Gamma_h w at node a = (dN_a/dx2) P2 V_a + (dN_a/dx3) P3 V_a,  Gamma_l w' = N_a PL V_a',
 // Gamma_e = G0 + x2 G2 + x3 G3, with the constant selection matrices below:
@@ -397,7 +397,7 @@ class ConstrainedSolver {
 
 Matrix6d sectionMassMatrix(double mu, const Eigen::Vector2d& fm, const Eigen::Matrix2d& sm) {
   // Kinetic energy of the rigid section moving with the reference line:
-  // [v; omega] with v about the origin (Hodges 2006, eq. 4.xx, VABS order).
+  // [v; omega] with v about the origin (Hodges 2006, ch. 4; VABS order).
   Matrix6d M = Matrix6d::Zero();
   M(0, 0) = M(1, 1) = M(2, 2) = mu;
   M(0, 4) = M(4, 0) = fm.y();
@@ -468,7 +468,7 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
   P.cpu_factorisation = lap();
   if (opt.progress) opt.progress("warping", 0.5);
 
-  // Zeroth order (classical): E V0 = -Dhe, Hodges (2006) eq. 4.xx.
+  // Zeroth order (classical): E V0 = -Dhe (Cesnik & Hodges 1997).
   const DenseN4 V0 = solver.solve(-A.Dhe);
   Eigen::Matrix4d K = A.Dee + V0.transpose() * A.Dhe;
   K = 0.5 * (K + K.transpose()).eval();
@@ -489,7 +489,7 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
     Eigen::Matrix4d C = fp.VLV + V1.transpose() * (T2 + T1);
     C = 0.5 * (C + C.transpose()).eval();
     // Equivalence with the Timoshenko energy through the equilibrium equations
-    // of the unloaded beam, e' = K^-1 P F (Yu et al. 2002, eqs. 40-52).
+    // of the unloaded beam, e' = K^-1 P F (Yu et al. 2002, sec. 3).
     Eigen::Matrix<double, 4, 2> Pm;
     Pm << 0, 0, 0, 0, 0, -1, 1, 0;
     const Eigen::Matrix4d Kinv = K.inverse();
