@@ -1,6 +1,7 @@
 #include "section-prep/section_spec.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "common/files.h"
@@ -103,6 +104,11 @@ SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
       spec.material = materialIndex(spec, index, lookupMaterial(lib, s["material"]));
     } else {
       readLayup(spec, index, s, lib, lams);
+      const double total = totalThickness(spec.plies);
+      if (std::abs(total - spec.height) > 1e-9 * spec.height)
+        s[s.has("plies") ? "plies" : "laminate"].fail(
+            "the plies add up to " + std::to_string(total) + " m but height is " +
+            std::to_string(spec.height) + " m; expected them to fill the height");
     }
   } else if (shape == "box") {
     s.allowKeys({"shape", "width", "height", "wall", "mesh_size"});

@@ -83,6 +83,14 @@ TEST(YamlErrors, NameTheFileLineAndKey) {
                      "  wall: {material: cfrp_iso, thickness: 0.006}\n", "s.yaml"));
   });
   EXPECT_NE(thick.find("section.wall"), std::string::npos) << thick;
+
+  const std::string short_stack = inputError([] {
+    readSectionSpec(InputNode::loadString(
+        kMaterials + "section:\n  shape: rectangle\n  width: 0.02\n  height: 0.01\n"
+                     "  plies: [{material: cfrp_iso, thickness: 0.004}]\n", "s.yaml"));
+  });
+  EXPECT_NE(short_stack.find("s.yaml:7"), std::string::npos) << short_stack;
+  EXPECT_NE(short_stack.find("section.plies"), std::string::npos) << short_stack;
 }
 
 const char* kVabsHeader =
