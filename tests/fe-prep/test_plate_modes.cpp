@@ -77,14 +77,16 @@ TEST(PlateModes, SimplySupportedSquareIsotropicMatchesNavier) {
 TEST(PlateModes, SimplySupportedSarPanelIsotropicMatchesNavier) {
   const std::string sec = "material: cfrp_iso\n    thickness: 0.002";
   const BuildResult r = runYaml(plateYaml(sec, 2.0, 1.3, "dst", 0.05, kSimplySupported, 6));
-  expectRelative(r.body.frequencies_hz, navierList(stiffnessOf(sec), 2.0, 1.3, 6, false), 0.01, "SS 2.0 x 1.3");
+  // Measured: 0.01-0.14 % at h = 0.05 (a/h = 1000: DST is DKT here).
+  expectRelative(r.body.frequencies_hz, navierList(stiffnessOf(sec), 2.0, 1.3, 6, false), 0.005, "SS 2.0 x 1.3");
 }
 
 TEST(PlateModes, SimplySupportedCrossPlyMatchesNavier) {
   // [0/90/90/0] is specially orthotropic (D16 = D26 = 0, B = 0): Navier is exact.
   const std::string sec = "laminate: layup2";
   const BuildResult r = runYaml(plateYaml(sec, 2.0, 1.3, "dst", 0.05, kSimplySupported, 6));
-  expectRelative(r.body.frequencies_hz, navierList(stiffnessOf(sec), 2.0, 1.3, 6, false), 0.01, "SS cross-ply");
+  // Measured: 0.005-0.12 % at h = 0.05.
+  expectRelative(r.body.frequencies_hz, navierList(stiffnessOf(sec), 2.0, 1.3, 6, false), 0.005, "SS cross-ply");
 }
 
 TEST(PlateModes, ThickPlateDstFollowsShearTheoryAndDktDoesNot) {
@@ -149,8 +151,8 @@ TEST(PlateModes, CantileverSquareMatchesLeissa) {
   for (double lam : kLeissaCantileverSquare) want.push_back(lam * scale);
   const BuildResult r = runYaml(plateYaml(sec, 1.0, 1.0, "dkt", 0.05, "{clamp: [edge_xmin]}", 5));
   EXPECT_EQ(r.rigid_removed, 0);
-  // Leissa's Ritz values are upper bounds good to ~0.1 %; DKT with lumped mass
-  // at h = a/20 is within 1 % (measured 0.1-0.8 %).
+  // Leissa's Ritz values are upper bounds; DKT with lumped mass at h = a/20 lies
+  // 0.4-1.1 % below them (measured).
   expectRelative(r.body.frequencies_hz, want, 0.015, "cantilever");
 }
 
