@@ -1,5 +1,6 @@
 #include "fe-prep/constraints.h"
 
+#include <algorithm>
 #include <map>
 
 namespace fc::feprep {
@@ -64,12 +65,14 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointConstraint>& constra
   DofMap map;
   map.T.resize(static_cast<std::size_t>(n));
   map.offset.resize(static_cast<std::size_t>(n));
+  map.unconstrained.assign(static_cast<std::size_t>(n), 0);
   long next = 0;
   for (long i = 0; i < n; ++i) {
     auto it = rows.find(i);
     Eigen::MatrixXd T;
     if (it == rows.end()) {
       T = Eigen::MatrixXd::Identity(6, 6);
+      map.unconstrained[static_cast<std::size_t>(i)] = 1;
     } else if (it->second.rows() == 3 && it->second.topRightCorner(3, 3).norm() == 0.0) {
       // A pin on the node itself: exactly the three rotations (no SVD round-off).
       T = Eigen::MatrixXd::Zero(6, 3);
@@ -132,6 +135,14 @@ Eigen::MatrixXd admissibleRigidModes(const Mesh& mesh, const std::vector<PointCo
 void reduceElement(const DofMap& map, const std::vector<long>& nodes, const Eigen::MatrixXd& Ke,
                    Eigen::MatrixXd& Kr, std::vector<long>& indices) {
   const int a = static_cast<int>(nodes.size());
+  // Most elements touch no constrained node: T is the identity, skip the products.
+  if (std::all_of(nodes.begin(), nodes.end(), [&](long n) { return map.unconstrained[static_cast<std::size_t>(n)] != 0; })) {
+    Kr = Ke;
+    indices.clear();
+    for (long n : nodes)
+      for (long j = 0; j < 6; ++j) indices.push_back(map.offset[static_cast<std::size_t>(n)] + j);
+    return;
+  }
   int k = 0;
   for (long n : nodes) k += map.count(n);
   Eigen::MatrixXd Tb = Eigen::MatrixXd::Zero(6 * a, k);

@@ -25,6 +25,7 @@ struct DofMap {
   std::vector<Eigen::MatrixXd> T;  // per node, 6 x k_n
   std::vector<long> offset;        // first reduced DOF of each node
   long reduced = 0;                // number of reduced DOF
+  std::vector<char> unconstrained; // per node: T_n is the identity (no condition)
 
   int count(long node) const { return static_cast<int>(T[static_cast<std::size_t>(node)].cols()); }
   // Full nodal vector (n_nodes * 6) from a reduced one.
