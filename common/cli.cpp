@@ -4,6 +4,7 @@
 
 #include "common/h5io.h"
 #include "common/input.h"
+#include "common/inspect.h"
 
 namespace fc {
 
@@ -20,6 +21,25 @@ int guardedMain(const std::string& tool, const std::function<int()>& body) {
     std::cerr << tool << ": error: " << e.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace fc
+
+namespace fc {
+
+void addInspectOption(CLI::App& app, const std::string& tool) {
+  app.add_option_function<std::string>(
+         "--inspect",
+         [tool](const std::string& path) {
+           const int rc = guardedMain(tool, [&]() {
+             std::cout << inspectFile(path);
+             return 0;
+           });
+           if (rc != 0) throw CLI::RuntimeError(rc);
+           throw CLI::Success();
+         },
+         "print what a flexcomp HDF5 file (section, body or results) holds, and exit")
+      ->trigger_on_parse();
 }
 
 }  // namespace fc

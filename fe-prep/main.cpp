@@ -26,7 +26,8 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
               b.center_of_mass.y(), b.center_of_mass.z());
   std::printf("  %-6s %14s\n", "mode", "frequency [Hz]");
   for (long i = 0; i < b.frequencies_hz.size(); ++i) std::printf("  %-6ld %14.6f\n", i + 1, b.frequencies_hz(i));
-  for (const auto& s : r.stages) std::printf("  %-11s %8.3f s  (peak RSS %.0f MB)\n", s.stage.c_str(), s.seconds, s.peak_rss_mb);
+  for (const auto& s : r.stages)
+    std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)\n", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
   (void)spec;
 }
 
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "flexible body file to write (HDF5)")->required();
   app.add_flag("-q,--quiet", quiet, "no progress lines on stderr");
   app.set_version_flag("--version", std::string("fe-prep ") + fc::version());
+  fc::addInspectOption(app, "fe-prep");
   CLI11_PARSE(app, argc, argv);
 
   // PETSc options come from PETSC_OPTIONS only: the command line belongs to CLI11.

@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
                  "(default: revolute angles and energies)");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
   app.set_version_flag("--version", std::string("mbs-run ") + fc::version());
+  fc::addInspectOption(app, "mbs-run");
   CLI11_PARSE(app, argc, argv);
 
   return fc::guardedMain("mbs-run", [&] {

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "the HDF5 file to write (format section/1)")->required();
   app.add_flag("-q,--quiet", quiet, "no summary on stdout, no progress on stderr");
   app.set_version_flag("--version", std::string("section-prep ") + fc::version());
+  fc::addInspectOption(app, "section-prep");
   CLI11_PARSE(app, argc, argv);
 
   return fc::guardedMain("section-prep", [&]() {

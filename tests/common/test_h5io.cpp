@@ -150,3 +150,38 @@ TEST(Inspect, DescribesFormatSummaryAndDatasets) {
   EXPECT_NE(text.find("per_length  () = 0.0455"), std::string::npos) << text;
   EXPECT_THROW(fc::inspectFile(tempPath("none.h5")), fc::H5Error);
 }
+
+#include "common/cli.h"
+
+TEST(Inspect, CommandLineOptionPrintsAndExits) {
+  const std::string path = tempPath("inspect_cli.h5");
+  {
+    fc::AtomicH5Writer w(path);
+    w.file().writeVector("/time", Eigen::VectorXd::LinSpaced(11, 0.0, 1.0));
+    fc::writeProvenance(w.file(), "results/1", "mbs-run", "");
+    w.file().setAttribute("/", "status", std::string("completed"));
+    w.commit();
+  }
+  CLI::App app{"t"};
+  std::string input;
+  app.add_option("input", input)->required();  // --inspect works without the required input
+  fc::addInspectOption(app, "tool");
+  const std::string arg0 = "tool", arg1 = "--inspect", arg2 = path;
+  const char* argv[] = {arg0.c_str(), arg1.c_str(), arg2.c_str()};
+  testing::internal::CaptureStdout();
+  EXPECT_THROW(app.parse(3, argv), CLI::Success);
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_NE(out.find("11 outputs, t = 0 .. 1 s, status: completed"), std::string::npos) << out;
+  CLI::App app2{"t"};
+  fc::addInspectOption(app2, "tool");
+  const std::string missing = tempPath("missing_inspect.h5");
+  const char* argv2[] = {arg0.c_str(), arg1.c_str(), missing.c_str()};
+  testing::internal::CaptureStderr();
+  try {
+    app2.parse(3, argv2);
+    FAIL();
+  } catch (const CLI::RuntimeError& e) {
+    EXPECT_EQ(e.get_exit_code(), 2);
+  }
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("tool: error:"), std::string::npos);
+}
