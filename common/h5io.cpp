@@ -6,6 +6,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "common/dataset_docs.h"
 #include "common/version.h"
 
 namespace fc {
@@ -369,6 +370,7 @@ AtomicH5Writer::~AtomicH5Writer() {
 }
 
 void AtomicH5Writer::commit() {
+  annotateDatasets(file_);
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
   file_.close();
   if (std::rename(tmp_path_.c_str(), final_path_.c_str()) != 0) {

@@ -50,6 +50,11 @@ TEST(H5io, RoundTripRowMajor) {
   EXPECT_DOUBLE_EQ(f.readArray("/modes/shapes")[23], 23.0);
   EXPECT_EQ(f.stringAttribute("/", "units"), "SI");
   EXPECT_EQ(f.stringAttribute("/stiffness", "order"), "VABS");
+  // commit() annotates the datasets the format defines with units and meaning.
+  EXPECT_EQ(f.stringAttribute("/mass/per_length", "units"), "kg/m");
+  EXPECT_NE(f.stringAttribute("/stiffness/timoshenko", "description").find("VABS order"),
+            std::string::npos);
+  EXPECT_FALSE(f.hasAttribute("/a/b/c", "units"));  // unknown datasets are left alone
   EXPECT_TRUE(f.exists("/a/b"));
   EXPECT_FALSE(f.exists("/a/x/y"));
   EXPECT_EQ(f.children("/a"), std::vector<std::string>{"b"});
@@ -184,4 +189,28 @@ TEST(Inspect, CommandLineOptionPrintsAndExits) {
     EXPECT_EQ(e.get_exit_code(), 2);
   }
   EXPECT_NE(testing::internal::GetCapturedStderr().find("tool: error:"), std::string::npos);
+}
+
+#include <fstream>
+#include <sstream>
+
+#include "common/dataset_docs.h"
+
+TEST(DatasetDocs, PatternsMatchOneSegmentPerStar) {
+  ASSERT_NE(fc::findDatasetDoc("results", "/bodies/B3/angular_velocity"), nullptr);
+  EXPECT_EQ(fc::findDatasetDoc("results", "/bodies/B3/angular_velocity")->units, "rad/s");
+  EXPECT_EQ(fc::findDatasetDoc("results", "/bodies/B3/x/angular_velocity"), nullptr);
+  EXPECT_EQ(fc::findDatasetDoc("section", "/bodies/B3/angular_velocity"), nullptr);
+}
+
+TEST(DatasetDocs, FileFormatsDocumentListsEveryDataset) {
+  // docs/file-formats.md is the users' reference: it must name every dataset
+  // the tools annotate, so that it cannot fall behind the code.
+  std::ifstream in(std::string(FLEXCOMP_SOURCE_DIR) + "/docs/file-formats.md");
+  ASSERT_TRUE(in) << "docs/file-formats.md missing";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  for (const auto& d : fc::datasetDocs())
+    EXPECT_NE(text.find("`" + d.pattern + "`"), std::string::npos) << d.pattern;
 }

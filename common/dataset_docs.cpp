@@ -1,0 +1,121 @@
+#include "common/dataset_docs.h"
+
+#include <sstream>
+
+namespace fc {
+
+namespace {
+
+std::vector<std::string> split(const std::string& path) {
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  std::string p;
+  while (std::getline(ss, p, '/'))
+    if (!p.empty()) parts.push_back(p);
+  return parts;
+}
+
+bool matches(const std::string& pattern, const std::string& path) {
+  const auto a = split(pattern), b = split(path);
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != "*" && a[i] != b[i]) return false;
+  return true;
+}
+
+void annotateGroup(H5File& f, const std::string& format, const std::string& group) {
+  for (const auto& name : f.children(group)) {
+    const std::string path = (group == "/" ? "" : group) + "/" + name;
+    bool is_dataset = true;
+    try {
+      f.shape(path);
+    } catch (const H5Error&) {
+      is_dataset = false;
+    }
+    if (!is_dataset) {
+      annotateGroup(f, format, path);
+      continue;
+    }
+    const DatasetDoc* doc = findDatasetDoc(format, path);
+    if (!doc) continue;
+    if (!f.hasAttribute(path, "units")) f.setAttribute(path, "units", doc->units);
+    if (!f.hasAttribute(path, "description")) f.setAttribute(path, "description", doc->description);
+  }
+}
+
+}  // namespace
+
+const std::vector<DatasetDoc>& datasetDocs() {
+  static const std::vector<DatasetDoc> docs = {
+      // section-prep
+      {"section", "/stiffness/timoshenko", "N, N m, N m^2 (by entry)",
+       "6x6 Timoshenko stiffness about the section origin, order [extension, shear x2, shear x3, "
+       "torsion, bending about x2, bending about x3] (VABS order)"},
+      {"section", "/stiffness/classical", "N, N m, N m^2 (by entry)",
+       "4x4 classical stiffness about the section origin, order [extension, torsion, bending about "
+       "x2, bending about x3]"},
+      {"section", "/mass/matrix", "kg/m, kg, kg m (by entry)",
+       "6x6 mass matrix per unit length about the section origin, Timoshenko order"},
+      {"section", "/mass/per_length", "kg/m", "mass per unit length"},
+      {"section", "/centers/mass", "m", "mass centre (x2, x3)"},
+      {"section", "/centers/tension", "m", "tension centre (x2, x3): where an axial force causes no bending"},
+      {"section", "/centers/shear", "m", "shear centre (x2, x3): where a transverse force causes no twist"},
+      {"section", "/centers/geometric", "m", "area centroid (x2, x3)"},
+      {"section", "/section/area", "m^2", "cross-section area"},
+      {"section", "/section/elements", "1", "number of 2-D elements of the section mesh"},
+      {"section", "/section/nodes", "1", "number of nodes of the section mesh"},
+      // fe-prep
+      {"flexbody", "/mesh/nodes", "m", "undeformed node positions in the body frame (n_nodes, 3)"},
+      {"flexbody", "/mesh/triangles", "1", "shell triangles, 0-based node indices (n, 3)"},
+      {"flexbody", "/mesh/beams", "1", "beam elements, 0-based node indices (n, 2)"},
+      {"flexbody", "/modes/frequencies_hz", "Hz", "natural frequencies of the constrained modes"},
+      {"flexbody", "/modes/eigenvalues", "rad^2/s^2", "omega^2 of each mode"},
+      {"flexbody", "/modes/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
+       "mass-normalised mode shapes (n_modes, n_nodes, 6): u1 u2 u3 theta1 theta2 theta3 per node"},
+      {"flexbody", "/mass/nodal", "kg, kg m^2",
+       "lumped mass and the three rotary inertias (body axes) of each node (n_nodes, 4)"},
+      {"flexbody", "/inertia/mass", "kg", "mass of the body"},
+      {"flexbody", "/inertia/center_of_mass", "m", "centre of mass, body frame, undeformed"},
+      {"flexbody", "/inertia/tensor", "kg m^2", "inertia tensor about the body origin, body axes, undeformed"},
+      {"flexbody", "/interfaces/*/node", "1", "index of the node the interface is rigidly attached to"},
+      {"flexbody", "/interfaces/*/position", "m", "interface position, body frame, undeformed"},
+      {"flexbody", "/interfaces/*/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
+       "the interface point's own displacement and rotation per mode (n_modes, 6)"},
+      {"flexbody", "/invariants/*", "SI (see docs/body-file.md)",
+       "inertia invariant of the floating-frame formulation, lumped-mass sums (docs/body-file.md)"},
+      // mbs-run
+      {"results", "/time", "s", "output times"},
+      {"results", "/bodies/*/position", "m", "body frame origin, global"},
+      {"results", "/bodies/*/orientation", "1", "Euler parameters [e0, e1, e2, e3] of the body frame"},
+      {"results", "/bodies/*/velocity", "m/s", "velocity of the body frame origin, global"},
+      {"results", "/bodies/*/angular_velocity", "rad/s", "angular velocity of the body frame, global"},
+      {"results", "/bodies/*/modal_coordinates", "kg^1/2 m", "modal coordinates of a flexible body"},
+      {"results", "/bodies/*/modal_velocities", "kg^1/2 m/s", "modal velocities of a flexible body"},
+      {"results", "/joints/*/angle", "rad",
+       "revolute angle: rotation of the second body relative to the first about the axis, unwrapped"},
+      {"results", "/joints/*/reaction_force", "N", "joint reaction force on the first body, global"},
+      {"results", "/joints/*/reaction_torque", "N m", "joint reaction torque on the first body, global"},
+      {"results", "/energy/kinetic", "J", "kinetic energy of all bodies"},
+      {"results", "/energy/potential", "J", "potential energy of gravity and springs"},
+      {"results", "/energy/strain", "J", "elastic strain energy of flexible bodies"},
+      {"results", "/energy/dissipated", "J", "energy dissipated by dampers since t = 0"},
+      {"results", "/energy/applied_work", "J", "work of actuators and applied forces since t = 0"},
+      {"results", "/diagnostics/constraint_violation", "m or rad",
+       "largest position-level constraint violation"},
+  };
+  return docs;
+}
+
+const DatasetDoc* findDatasetDoc(const std::string& format, const std::string& path) {
+  for (const auto& d : datasetDocs())
+    if (d.format == format && matches(d.pattern, path)) return &d;
+  return nullptr;
+}
+
+void annotateDatasets(H5File& f) {
+  if (!f.hasAttribute("/", "format")) return;
+  const std::string fmt = f.stringAttribute("/", "format");
+  annotateGroup(f, fmt.substr(0, fmt.find('/')), "/");
+}
+
+}  // namespace fc
