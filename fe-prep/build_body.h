@@ -16,6 +16,7 @@ namespace fc::feprep {
 struct StageStats {
   std::string stage;     // meshing, assembly, eigensolve
   double seconds = 0.0;  // wall time
+  double cpu_seconds = 0.0;  // this process's CPU time (user + system, all threads)
   double peak_rss_mb = 0.0;  // this process's peak resident memory after the stage
 };
 
