@@ -90,8 +90,9 @@ Matrix18d toBody(const Matrix18d& A, const Eigen::Matrix3d& R) {
     for (int j = i; j < 6; ++j) {
       const Eigen::Matrix3d b = R.transpose() * A.block<3, 3>(3 * i, 3 * j) * R;
       const Eigen::Matrix3d bt = R.transpose() * A.block<3, 3>(3 * j, 3 * i) * R;
-      B.block<3, 3>(3 * i, 3 * j) = 0.5 * (b + bt.transpose());
-      B.block<3, 3>(3 * j, 3 * i) = B.block<3, 3>(3 * i, 3 * j).transpose();
+      const Eigen::Matrix3d sym = 0.5 * (b + bt.transpose());
+      B.block<3, 3>(3 * i, 3 * j) = sym;
+      B.block<3, 3>(3 * j, 3 * i) = sym.transpose();
     }
   return B;
 }
