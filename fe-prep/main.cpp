@@ -7,6 +7,7 @@
 
 #include "common/cli.h"
 #include "common/files.h"
+#include "common/input.h"
 #include "common/flexbody.h"
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   }
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  const int rc = fc::guardedMain("fe-prep", [&] {
+  auto run = [&] {
     const fc::feprep::BodySpec spec = fc::feprep::readBodySpec(input);
     fc::feprep::BuildOptions opt;
     opt.quiet = quiet;
@@ -63,7 +64,21 @@ int main(int argc, char** argv) {
       printSummary(spec, r, output);
     }
     return 0;
-  });
+  };
+  // Every rank reads the same input and fails the same way: only rank 0 speaks,
+  // so that a bad input gives one message under mpirun too.
+  int rc;
+  if (rank == 0) {
+    rc = fc::guardedMain("fe-prep", run);
+  } else {
+    try {
+      rc = run();
+    } catch (const fc::InputError&) {
+      rc = 2;
+    } catch (const std::exception&) {
+      rc = 1;
+    }
+  }
   SlepcFinalize();
   return rc;
 }

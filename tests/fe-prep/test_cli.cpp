@@ -73,6 +73,22 @@ TEST(FePrepCli, MpirunTwoRanksGivesTheSerialFrequencies) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(FePrepCli, BadInputUnderMpirunGivesOneMessage) {
+  const std::string dir = scratch("mpi-bad");
+  std::string yaml = kPanel;
+  yaml.replace(yaml.find("element: dst"), 12, "element: dsq");
+  writeText(dir + "/panel.yaml", yaml);
+  std::string out;
+  const std::string mpi = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -n 2 --oversubscribe ";
+  EXPECT_NE(run(mpi + feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/out.h5", out, dir), 0);
+  const auto first = out.find("fe-prep: error: ");
+  ASSERT_NE(first, std::string::npos) << out;
+  EXPECT_EQ(out.find("fe-prep: error: ", first + 1), std::string::npos) << out;
+  EXPECT_NE(out.find("panel.yaml:9:14: body.shell.element"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5"));
+  std::filesystem::remove_all(dir);
+}
+
 struct BadInput {
   const char* name;
   const char* find;     // text of kPanel to replace
