@@ -60,20 +60,21 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
   // share(x) = b^T G^{-1} b with b = R^T M x, G = R^T M R, x M-normalised.
   std::vector<Vec> MR(static_cast<std::size_t>(r));
   Eigen::MatrixXd G(r, r);
-  for (long j = 0; j < r; ++j) {
-    Vec Rj = toPetsc(M, rigid.col(j));
-    check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
-    check(MatMult(M, Rj, MR[static_cast<std::size_t>(j)]), "MatMult");
-    VecDestroy(&Rj);
-  }
-  for (long i = 0; i < r; ++i)
+  {
+    std::vector<Vec> R(static_cast<std::size_t>(r));
     for (long j = 0; j < r; ++j) {
-      Vec Ri = toPetsc(M, rigid.col(i));
-      PetscScalar d;
-      check(VecDot(Ri, MR[static_cast<std::size_t>(j)], &d), "VecDot");
-      G(i, j) = d;
-      VecDestroy(&Ri);
+      R[static_cast<std::size_t>(j)] = toPetsc(M, rigid.col(j));
+      check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
+      check(MatMult(M, R[static_cast<std::size_t>(j)], MR[static_cast<std::size_t>(j)]), "MatMult");
     }
+    for (long i = 0; i < r; ++i)
+      for (long j = 0; j < r; ++j) {
+        PetscScalar d;
+        check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &d), "VecDot");
+        G(i, j) = d;
+      }
+    for (auto& v : R) VecDestroy(&v);
+  }
   const Eigen::MatrixXd Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
 
   const double lambda_max =
