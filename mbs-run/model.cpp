@@ -8,15 +8,36 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586476925;
 }
 
+namespace {
+// Kane's spin-up law (model.h): angle, rate and acceleration added to the drive.
+double spinAngle(double Os, double T, double t) {
+  if (T <= 0) return 0.0;
+  if (t >= T) return Os * (t - 0.5 * T);
+  const double c = T / kTwoPi;
+  return Os / T * (0.5 * t * t + c * c * (std::cos(kTwoPi * t / T) - 1.0));
+}
+double spinRate(double Os, double T, double t) {
+  if (T <= 0) return 0.0;
+  if (t >= T) return Os;
+  return Os / T * (t - T / kTwoPi * std::sin(kTwoPi * t / T));
+}
+double spinAccel(double Os, double T, double t) {
+  if (T <= 0 || t >= T) return 0.0;
+  return Os / T * (1.0 - std::cos(kTwoPi * t / T));
+}
+}  // namespace
+
 double Drive::angle(double t) const {
-  return angle0 + speed * t + amplitude * std::sin(kTwoPi * frequency * t + phase);
+  return angle0 + speed * t + amplitude * std::sin(kTwoPi * frequency * t + phase) +
+         spinAngle(spin_rate, spin_time, t);
 }
 double Drive::rate(double t) const {
-  return speed + amplitude * kTwoPi * frequency * std::cos(kTwoPi * frequency * t + phase);
+  return speed + amplitude * kTwoPi * frequency * std::cos(kTwoPi * frequency * t + phase) +
+         spinRate(spin_rate, spin_time, t);
 }
 double Drive::accel(double t) const {
   const double w = kTwoPi * frequency;
-  return -amplitude * w * w * std::sin(w * t + phase);
+  return -amplitude * w * w * std::sin(w * t + phase) + spinAccel(spin_rate, spin_time, t);
 }
 
 double PiecewiseLinear::value(double at) const {

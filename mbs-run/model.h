@@ -42,11 +42,15 @@ struct Body {
 
 enum class JointType { Spherical, Revolute, Fixed, Universal, Cylindrical, Prismatic };
 
-// Prescribed revolute angle: angle0 + speed t + amplitude sin(2 pi frequency t + phase).
-// Smooth in time so that the driven accelerations stay finite.
+// Prescribed revolute angle: angle0 + speed t + amplitude sin(2 pi frequency t + phase)
+// + spin-up(t). Smooth in time so that the driven accelerations stay finite.
+// The spin-up is Kane, Ryan & Banerjee's (J. Guid. Control Dyn. 10 (1987) 139):
+// rate (Os/T)(t - (T/2 pi) sin(2 pi t/T)) for t < T, then Os; its acceleration
+// (Os/T)(1 - cos(2 pi t/T)) starts and ends at zero.
 struct Drive {
   bool active = false;
   double angle0 = 0, speed = 0, amplitude = 0, frequency = 0, phase = 0;
+  double spin_rate = 0, spin_time = 0;  // Os [rad/s], T [s]; spin_time 0: no spin-up
   double angle(double t) const;
   double rate(double t) const;
   double accel(double t) const;

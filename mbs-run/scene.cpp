@@ -196,13 +196,20 @@ Joint parseJoint(const Model& m, const InputNode& j) {
     const InputNode d = j["drive"];
     if (jt.type != JointType::Revolute) d.fail("only revolute joints can be driven");
     if (jt.locked) d.fail("a driven joint cannot also be locked");
-    d.allowKeys({"angle0", "speed", "amplitude", "frequency", "phase"});
+    d.allowKeys({"angle0", "speed", "amplitude", "frequency", "phase", "spin_up"});
     jt.drive.active = true;
     jt.drive.angle0 = d.number("angle0", jt.initial_angle);
     jt.drive.speed = d.number("speed", 0.0);
     jt.drive.amplitude = d.number("amplitude", 0.0);
     jt.drive.frequency = d.number("frequency", 0.0);
     jt.drive.phase = d.number("phase", 0.0);
+    if (d.has("spin_up")) {
+      const InputNode su = d["spin_up"];
+      su.allowKeys({"rate", "time"});
+      jt.drive.spin_rate = su["rate"].asDouble();
+      jt.drive.spin_time = su["time"].asDouble();
+      if (!(jt.drive.spin_time > 0)) su["time"].fail("expected a spin-up time > 0 [s]");
+    }
     if (!j.has("initial_angle")) jt.initial_angle = jt.drive.angle(0.0);
   }
   return jt;

@@ -1,0 +1,162 @@
+#pragma once
+// A uniform Euler-Bernoulli cantilever as a reduced flexible body, written
+// here (not by fe-prep) so the validation tests control every number: Hermite
+// cubic bending elements in the body x-y plane (transverse displacement v
+// along body y, rotation theta_z = dv/dx), clamped at the root node 0 (the
+// body-frame origin), lumped masses rho A h (half at the ends) and rotary
+// inertias m_k h^2 / 12 (the slice's own inertia; it vanishes as h -> 0 and
+// keeps the lumped mass matrix positive definite). The modes are the
+// mass-orthonormal eigenvectors of K phi = omega^2 M phi, so they are the
+// clamped-root (fixed-interface) modes a floating frame at the root needs.
+// Interfaces: "root" (node 0, shapes zero) and "tip" (last node).
+//
+// Also a brute-force planar reference: the same lumped masses swung about the
+// root in the x-y plane, in minimal coordinates (theta, w), with each node's
+// acceleration written out (no inertia invariants, no constraints), for the
+// flexible pendulum and spin-up tests.
+#include <Eigen/Dense>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+#include "common/flexbody.h"
+
+namespace fc::mbs::test {
+
+struct BeamSpec {
+  double length = 1.0, rho_a = 1.0, ei = 80.0;  // [m], [kg/m], [N m^2]
+  int elements = 20;
+  int modes = 6;                 // kept in the file
+  double stiffness_scale = 1.0;  // multiplies K (eigenvalues), shapes unchanged
+};
+
+struct BeamModel {
+  FlexBody body;
+  Eigen::MatrixXd K, M;  // reduced (clamped) FE matrices, 2 dofs per free node
+  Eigen::VectorXd node_mass, node_rotary;  // per node incl. root
+};
+
+inline BeamModel cantileverBeam(const BeamSpec& s) {
+  const int ne = s.elements, nn = ne + 1, nd = 2 * ne;  // free dofs: nodes 1..ne
+  const double h = s.length / ne;
+  BeamModel b;
+  b.K = Eigen::MatrixXd::Zero(nd, nd);
+  Eigen::Matrix4d ke;
+  ke << 12, 6 * h, -12, 6 * h, 6 * h, 4 * h * h, -6 * h, 2 * h * h, -12, -6 * h, 12, -6 * h, 6 * h, 2 * h * h,
+      -6 * h, 4 * h * h;
+  ke *= s.ei * s.stiffness_scale / (h * h * h);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c) {
+        const int ga = 2 * e + a - 2, gc = 2 * e + c - 2;  // node e's dofs are 2e-2, 2e-1
+        if (ga >= 0 && gc >= 0) b.K(ga, gc) += ke(a, c);
+      }
+  b.node_mass = Eigen::VectorXd::Constant(nn, s.rho_a * h);
+  b.node_mass(0) *= 0.5;
+  b.node_mass(ne) *= 0.5;
+  b.node_rotary = b.node_mass * (h * h / 12.0);
+  b.M = Eigen::MatrixXd::Zero(nd, nd);
+  for (int k = 1; k < nn; ++k) {
+    b.M(2 * k - 2, 2 * k - 2) = b.node_mass(k);
+    b.M(2 * k - 1, 2 * k - 1) = b.node_rotary(k);
+  }
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(b.K, b.M);
+  FlexBody& f = b.body;
+  f.name = "beam";
+  f.nodes = Eigen::MatrixXd::Zero(nn, 3);
+  f.nodal_mass.resize(nn, 4);
+  for (int k = 0; k < nn; ++k) {
+    f.nodes(k, 0) = k * h;
+    // Torsional and out-of-plane rotary inertias: any positive values (they
+    // are not excited in plane), here those of the slice as well.
+    f.nodal_mass.row(k) << b.node_mass(k), b.node_rotary(k), b.node_rotary(k), b.node_rotary(k);
+  }
+  const int nm = s.modes;
+  f.shapes = Eigen::MatrixXd::Zero(6 * nn, nm);
+  f.eigenvalues = es.eigenvalues().head(nm);
+  f.frequencies_hz = f.eigenvalues.array().sqrt() / (2 * M_PI);
+  for (int j = 0; j < nm; ++j) {
+    Eigen::VectorXd phi = es.eigenvectors().col(j);  // M-orthonormal
+    if (phi(nd - 2) < 0) phi = -phi;                 // tip moves along +y
+    for (int k = 1; k < nn; ++k) {
+      f.shapes(6 * k + 1, j) = phi(2 * k - 2);
+      f.shapes(6 * k + 5, j) = phi(2 * k - 1);
+    }
+  }
+  for (int k : {0, ne}) {
+    FlexInterface it;
+    it.name = k == 0 ? "root" : "tip";
+    it.node = k;
+    it.position = f.nodes.row(k).transpose();
+    it.shapes = f.shapes.middleRows(6 * k, 6).transpose();
+    f.interfaces.push_back(it);
+  }
+  f.elements["beams"] = IndexMatrix(ne, 2);
+  for (int e = 0; e < ne; ++e) f.elements["beams"].row(e) << e, e + 1;
+  setRigidPropertiesFromLumpedMasses(f);
+  return b;
+}
+
+inline std::string writeBeam(const BeamModel& b, const std::string& tag) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("flexval_" + std::to_string(::getpid()) + "_" + tag + ".h5"))
+          .string();
+  fc::Provenance prov;
+  prov.inputs_sha256 = "test";
+  writeFlexBody(path, b.body, computeInertiaInvariants(b.body), prov);
+  return path;
+}
+
+// Planar motion of the lumped beam about its root (a revolute about z at the
+// origin), minimal coordinates q = [theta, w_1..w_nm]. Node k: body position
+// s_k = (x_k, Phi_k w), global x_k = R(theta) s_k, rotary inertia J_k spinning
+// at theta_dot + Theta_k w_dot. Lagrange's equations per node:
+//   sum m_k J_k^T (J_k qdd + a_k) + sum J_k^rot (theta_dd + Theta_k wdd) [1; Theta_k^T]
+//     + [0; Lambda w + D w_dot] = sum m_k J_k^T g,
+// J_k = [R' s_k, R Phi_k], a_k = R'' s_k theta_dot^2 + 2 R' Phi_k w_dot theta_dot.
+struct PlanarBeam {
+  const FlexBody& body;
+  int nm;
+  Eigen::Vector2d g = Eigen::Vector2d::Zero();
+  Eigen::VectorXd damping;  // 2 zeta omega per mode (empty: none)
+
+  // Returns qdd; if `prescribed`, theta_dd is given and only the modal rows are solved.
+  Eigen::VectorXd accel(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, bool prescribed = false,
+                        double theta_dd = 0.0) const {
+    const int n = 1 + nm;
+    const double th = q(0), c = std::cos(th), sn = std::sin(th);
+    Eigen::Matrix2d R, Rp;
+    R << c, -sn, sn, c;
+    Rp << -sn, -c, c, -sn;
+    const Eigen::VectorXd w = q.tail(nm), wd = qd.tail(nm);
+    Eigen::MatrixXd Mq = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+    for (long k = 0; k < body.nodeCount(); ++k) {
+      const double m = body.nodal_mass(k, 0), J = body.nodal_mass(k, 3);
+      const Eigen::RowVectorXd phi = body.shapes.row(6 * k + 1).head(nm);
+      const Eigen::RowVectorXd thz = body.shapes.row(6 * k + 5).head(nm);
+      const Eigen::Vector2d sk(body.nodes(k, 0), phi.dot(w));
+      Eigen::MatrixXd Jk(2, n);
+      Jk.col(0) = Rp * sk;
+      Jk.rightCols(nm) = R.col(1) * phi;
+      const Eigen::Vector2d a = -R * sk * qd(0) * qd(0) + 2 * Rp.col(1) * phi.dot(wd) * qd(0);
+      Mq += m * Jk.transpose() * Jk;
+      f += m * Jk.transpose() * (g - a);
+      Eigen::RowVectorXd jr(n);
+      jr << 1.0, thz;
+      Mq += J * jr.transpose() * jr;
+    }
+    for (int j = 0; j < nm; ++j) {
+      f(1 + j) -= body.eigenvalues(j) * w(j);
+      if (damping.size()) f(1 + j) -= damping(j) * wd(j);
+    }
+    Eigen::VectorXd qdd(n);
+    if (!prescribed) return Mq.ldlt().solve(f);
+    qdd(0) = theta_dd;
+    qdd.tail(nm) = Mq.bottomRightCorner(nm, nm).ldlt().solve(f.tail(nm) - Mq.bottomLeftCorner(nm, 1) * theta_dd);
+    return qdd;
+  }
+};
+
+}  // namespace fc::mbs::test
