@@ -155,7 +155,12 @@ Results simulate(const Model& model, const RunOptions& options) {
     const double t_limit = next_timed < timed.size() ? std::min(t_end, timed[next_timed]->time) : t_end;
     if (!integ->step(t_limit)) {
       std::ostringstream s;
-      s << "solver failure: step size too small at t = " << t;
+      // The usual cause at tight tolerances: the error test (or TR-BDF2's
+      // Newton iteration) asks for more digits than f(y) carries (the
+      // multiplier iteration stops at a 1e-10 residual), so say what to change.
+      s << "solver failure: step size too small at t = " << t << " (" << integ->name() << ", rtol " << st.rtol
+        << ", atol " << tol.atol << "): the error test cannot be met; at tight tolerances the right-hand side's"
+        << " precision is the limit - loosen rtol or use dopri5";
       R.status = s.str();
       break;
     }

@@ -245,6 +245,43 @@ TEST(FlexibleValidation, FlexiblePendulumMatchesBruteForcePlanarModel) {
   std::filesystem::remove(file);
 }
 
+TEST(FlexibleValidation, SpinUpDriveLaw) {
+  // Kane's law: rate (Os/T)(t - (T/2 pi) sin(2 pi t/T)) for t < T, then Os.
+  Drive d;
+  d.active = true;
+  d.spin_rate = 6.0;
+  d.spin_time = 15.0;
+  for (double t : {0.0, 3.0, 7.5, 14.0, 15.0, 20.0}) {
+    const double rate = t < 15 ? 6.0 / 15 * (t - 15 / (2 * M_PI) * std::sin(2 * M_PI * t / 15)) : 6.0;
+    EXPECT_NEAR(d.rate(t), rate, 1e-14);
+    // Angle and acceleration consistent with the rate (central differences,
+    // h = 1e-4: truncation h^2 max|rate'''| / 6 ~ 1e-9, rounding 1e-16 x 45 rad / h ~ 1e-10).
+    const double h = 1e-4;
+    if (t > 0) {
+      EXPECT_NEAR((d.angle(t + h) - d.angle(t - h)) / (2 * h), d.rate(t), 1e-8);
+      EXPECT_NEAR((d.rate(t + h) - d.rate(t - h)) / (2 * h), d.accel(t), 1e-8);
+    }
+  }
+  EXPECT_EQ(d.angle(0.0), 0.0);
+  EXPECT_NEAR(d.angle(15.0), 6.0 * 15 / 2, 1e-12);  // the mean rate over the spin-up is Os/2
+  try {
+    sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - {name: a, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}}
+joints:
+  - {name: hub, type: revolute, bodies: [ground, a], points: [[0,0,0],[0,0,0]], axes: [[0,0,1],[0,0,1]],
+     drive: {spin_up: {rate: 6, time: -1}}}
+)");
+    ADD_FAILURE() << "a negative spin-up time was accepted";
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("test.yaml:7"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("time"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("> 0"), std::string::npos) << msg;
+  }
+}
+
 // Kane, Ryan & Banerjee (1987): L = 10 m, rho A = 1.2 kg/m, EI = 14 000 N m^2
 // (E = 7e10 Pa, I = 2e-7 m^4), first bending frequency
 // 1.875^2 sqrt(EI / rho A L^4) = 3.80 rad/s; spin-up over T = 15 s to Os.
