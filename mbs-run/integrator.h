@@ -50,7 +50,10 @@ std::unique_ptr<Integrator> makeDormandPrince(Rhs f, const Tolerances& tol);
 // gamma = 2 - sqrt(2), both with the same iteration matrix I - d h J; L-stable,
 // order 2, embedded 3rd-order estimate filtered by (I - d h J)^-1 so that stiff
 // components do not spoil the step control. Simplified Newton with a
-// finite-difference Jacobian reused across steps. For stiff scenes.
+// finite-difference Jacobian reused across steps. For stiff scenes. The
+// iteration matrix is refactorised only when the step size has moved by more
+// than 30 % since the last factorisation (or the Jacobian was renewed):
+// simplified Newton still converges with a nearby h in the matrix.
 std::unique_ptr<Integrator> makeTrBdf2(Rhs f, const Tolerances& tol);
 
 }  // namespace fc::mbs
