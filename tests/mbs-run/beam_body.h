@@ -159,4 +159,66 @@ struct PlanarBeam {
   }
 };
 
+// Two such beams in a planar chain: beam 1 hinged at the origin, beam 2's root
+// hinged at beam 1's tip (both about z). Minimal coordinates
+// q = [theta1, w1 (nm1), theta2, w2 (nm2)], absolute angles. Beam 2's node k:
+// x = R1 (p1 + Phi1_tip w1) + R2 s2_k(w2), so its Jacobian carries beam 1's
+// tip motion; the same node-by-node Lagrange equations as PlanarBeam.
+struct PlanarDoubleBeam {
+  const FlexBody& b1;
+  const FlexBody& b2;
+  int nm1, nm2;
+  Eigen::Vector2d g = Eigen::Vector2d::Zero();
+
+  Eigen::VectorXd accel(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+    const int n = 2 + nm1 + nm2, i2 = 1 + nm1;  // index of theta2
+    auto rot = [](double th, Eigen::Matrix2d& R, Eigen::Matrix2d& Rp) {
+      const double c = std::cos(th), sn = std::sin(th);
+      R << c, -sn, sn, c;
+      Rp << -sn, -c, c, -sn;
+    };
+    Eigen::Matrix2d R1, R1p, R2, R2p;
+    rot(q(0), R1, R1p);
+    rot(q(i2), R2, R2p);
+    const Eigen::VectorXd w1 = q.segment(1, nm1), wd1 = qd.segment(1, nm1);
+    const Eigen::VectorXd w2 = q.tail(nm2), wd2 = qd.tail(nm2);
+    Eigen::MatrixXd Mq = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+    const long tip = b1.nodeCount() - 1;
+    const Eigen::RowVectorXd phi_tip = b1.shapes.row(6 * tip + 1).head(nm1);
+    const Eigen::Vector2d p1(b1.nodes(tip, 0), phi_tip.dot(w1));  // beam 1's deformed tip, body 1 frame
+    for (int body = 0; body < 2; ++body) {
+      const FlexBody& b = body == 0 ? b1 : b2;
+      const int nm = body == 0 ? nm1 : nm2, it = body == 0 ? 0 : i2;
+      const Eigen::Matrix2d& R = body == 0 ? R1 : R2;
+      const Eigen::Matrix2d& Rp = body == 0 ? R1p : R2p;
+      const Eigen::VectorXd& w = body == 0 ? w1 : w2;
+      const Eigen::VectorXd& wd = body == 0 ? wd1 : wd2;
+      for (long k = 0; k < b.nodeCount(); ++k) {
+        const double m = b.nodal_mass(k, 0), J = b.nodal_mass(k, 3);
+        const Eigen::RowVectorXd phi = b.shapes.row(6 * k + 1).head(nm);
+        const Eigen::RowVectorXd thz = b.shapes.row(6 * k + 5).head(nm);
+        const Eigen::Vector2d sk(b.nodes(k, 0), phi.dot(w));
+        Eigen::MatrixXd Jk = Eigen::MatrixXd::Zero(2, n);
+        Jk.col(it) = Rp * sk;
+        Jk.middleCols(it + 1, nm) = R.col(1) * phi;
+        Eigen::Vector2d a = -R * sk * qd(it) * qd(it) + 2 * Rp.col(1) * phi.dot(wd) * qd(it);
+        if (body == 1) {  // carried by beam 1's tip
+          Jk.col(0) = R1p * p1;
+          Jk.middleCols(1, nm1) = R1.col(1) * phi_tip;
+          a += -R1 * p1 * qd(0) * qd(0) + 2 * R1p.col(1) * phi_tip.dot(wd1) * qd(0);
+        }
+        Mq += m * Jk.transpose() * Jk;
+        f += m * Jk.transpose() * (g - a);
+        Eigen::RowVectorXd jr = Eigen::RowVectorXd::Zero(n);
+        jr(it) = 1.0;
+        jr.segment(it + 1, nm) = thz;
+        Mq += J * jr.transpose() * jr;
+      }
+      for (int j = 0; j < nm; ++j) f(it + 1 + j) -= b.eigenvalues(j) * w(j);
+    }
+    return Mq.ldlt().solve(f);
+  }
+};
+
 }  // namespace fc::mbs::test
