@@ -39,6 +39,7 @@ import yaml  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
 T_END = 10.0  # phase 1: R1 locked, actuator A unfolds panel 3 about hinge 2/3
+TOGGLE_MARGIN = 0.3  # s before the knee's alignment (R3 ~ 0.1 rad): runs of one model still agree to ~1e-6 rad
 
 # The paper's model (Neto et al. 2006, sec. 4.2) and the study's reference.
 BASE = dict(tri=86, modes=14, truss=2, rtol=1e-6, integ="dopri5", preset=None)
@@ -72,7 +73,10 @@ def sweep():
     runs += [("tolerance", dict(BASE, preset=p, rtol=None, integ=None)) for p in ("fast", "accurate")]
     runs += [("combined", dict(BASE, tri=40, modes=4, truss=0, rtol=1e-3)),
              ("combined", dict(BASE, modes=8, truss=0, rtol=1e-4)),
-             ("combined", dict(BASE, modes=8, truss=0, rtol=1e-5))]
+             ("combined", dict(BASE, tri=40, modes=8, rtol=1e-4)),
+             ("combined", dict(BASE, modes=8, rtol=1e-4)),
+             ("combined", dict(BASE, tri=200, rtol=1e-4)),
+             ("combined", dict(BASE, tri=500, rtol=1e-4))]
     runs += [("integrator", dict(BASE, integ="trbdf2", rtol=1e-4))]
     return runs
 
@@ -187,25 +191,49 @@ def text_attr(f, key):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
-def errors(r, ref):
-    """Max and RMS over 0-10 s of |angle - ref| (rad) and |omega - ref| (rad/s, vector norm)."""
+def alignment(r):
+    """Time at which the knee R3 is straight (closest approach of its angle to 0; the toggle of the
+    S-R-S chord) and the branch taken after it: the knee folds over (angle < 0 at the end) or
+    bounces back (angle > 0)."""
+    a, t = r["angle"], r["time"]
+    i = int(np.argmax(a < 0.05)) if (a < 0.05).any() else len(a) - 1
+    j = min(i + int(np.argmin(np.abs(a[i:i + 100]))), len(a) - 2)
+    if 0 < j and abs(a[j]) > 0:  # |angle| is a smooth minimum or a crossing: refine on the 0.01 s grid
+        y0, y1, y2 = np.abs(a[j - 1:j + 2])
+        d = y0 - 2 * y1 + y2
+        tj = t[j] + (0.5 * (y0 - y2) / d * (t[j + 1] - t[j]) if d > 0 else 0.0)
+    else:
+        tj = t[j]
+    return tj, ("folds over" if a[-1] < 0 else "bounces back")
+
+
+def errors(r, ref, t_cut):
+    """Max and RMS of |angle - ref| (rad) and |omega - ref| (rad/s, vector norm), before the toggle
+    (0..t_cut: keys a_*, w_*) and over all of phase 1 (keys fa_*, fw_*)."""
     t = ref["time"]
     mask = t <= T_END + 1e-9
     t = t[mask]
+    out = {}
     if r["time"][-1] < t[-1] - 1e-9:  # a run that stopped early has no error over the phase
-        return dict(a_max=np.inf, a_rms=np.inf, w_max=np.inf, w_rms=np.inf)
+        return {k: np.inf for k in ("a_max", "a_rms", "w_max", "w_rms", "fa_max", "fa_rms", "fw_max", "fw_rms")}
     da = np.interp(t, r["time"], r["angle"]) - ref["angle"][mask]
     dw = np.stack([np.interp(t, r["time"], r["omega"][:, k]) for k in range(3)], axis=1) - ref["omega"][mask]
     dwn = np.linalg.norm(dw, axis=1)
-    return dict(a_max=np.abs(da).max(), a_rms=np.sqrt(np.mean(da ** 2)),
-                w_max=dwn.max(), w_rms=np.sqrt(np.mean(dwn ** 2)))
+    for pre, sel in (("", t <= t_cut), ("f", np.ones_like(t, dtype=bool))):
+        out[pre + "a_max"] = np.abs(da[sel]).max()
+        out[pre + "a_rms"] = np.sqrt(np.mean(da[sel] ** 2))
+        out[pre + "w_max"] = dwn[sel].max()
+        out[pre + "w_rms"] = np.sqrt(np.mean(dwn[sel] ** 2))
+    return out
 
 
 def pareto(points):
     """Indices of the non-dominated (cpu, err) points: no other run is both cheaper and more accurate."""
     keep = []
     for i, (c, e) in enumerate(points):
-        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for j, (c2, e2) in enumerate(points) if j != i):
+        # Errors within 1 % count as equal: the same model at two tolerances differs only at rounding level.
+        if not any(c2 <= c and e2 <= 1.01 * e and (c2 < c or e2 < 0.99 * e)
+                   for j, (c2, e2) in enumerate(points) if j != i):
             keep.append(i)
     return keep
 
@@ -258,32 +286,46 @@ def main():
                   file=sys.stderr)
     ref = res[run_name(REF)]
     for n in res:
-        res[n].update(errors(res[n], ref))
+        res[n]["t_align"], res[n]["branch"] = alignment(res[n])
+    # The toggle is a bifurcation (docs/mbs-run.md): which branch a run takes there depends on
+    # rounding-level details, so errors after it measure the branch choice, not accuracy. The
+    # well-posed window ends TOGGLE_MARGIN before the reference's alignment.
+    args.t_cut = ref["t_align"] - TOGGLE_MARGIN
+    for n in res:
+        res[n].update(errors(res[n], ref, args.t_cut))
+        res[n]["dt_align"] = res[n]["t_align"] - ref["t_align"]
     # The integration error alone: each tolerance run against the paper's model at the tightest rtol.
     tight = res[run_name(dict(BASE, rtol=min(RTOLS)))]
     for n, c in unique.items():
         if c["tri"] == BASE["tri"] and c["modes"] == BASE["modes"] and c["truss"] == BASE["truss"]:
-            e = errors(res[n], tight)
+            e = errors(res[n], tight, args.t_cut)
             res[n]["a_int"], res[n]["w_int"] = e["a_max"], e["w_max"]
 
     with open(os.path.join(args.out, "summary.csv"), "w", newline="") as f:
         w = csv.writer(f)
+        keys = ["a_max", "a_rms", "w_max", "w_rms", "fa_max", "fa_rms", "fw_max", "fw_rms", "t_align", "branch"]
         w.writerow(["run", "triangles", "panel_modes", "truss_modes", "rtol", "integrator", "preset", "cpu_s",
-                    "steps", "rejected", "status", "angle_max", "angle_rms", "omega_max", "omega_rms"])
+                    "steps", "rejected", "status"] + keys)
         for n, c in unique.items():
             r = res[n]
-            w.writerow([n, c["tri"], c["modes"], c["truss"], c["rtol"], r["integrator"], c["preset"] or "",
-                        r["cpu"], r["steps"], r["rejected"], r["status"], r["a_max"], r["a_rms"], r["w_max"],
-                        r["w_rms"]])
+            w.writerow([n, c["tri"], c["modes"], c["truss"], r["rtol"], r["integrator"], c["preset"] or "",
+                        r["cpu"], r["steps"], r["rejected"], r["status"]] + [r[k] for k in keys])
     write_doc(args, runs, unique, res, ref, scene_src)
 
 
-def plot_pareto(args, unique, res):
+def tag(c):
+    if c["preset"]:
+        return f"preset {c['preset']}"
+    t = f"{c['tri']}t/{c['modes']}m/{c['truss']}k/{c['rtol']:.0e}"
+    return t + (" trbdf2" if c["integ"] == "trbdf2" else "")
+
+
+def plot_pareto(args, unique, res, ref_uncertainty):
     names = [n for n in unique if n != run_name(REF) and np.isfinite(res[n]["a_max"])]
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4))
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
     front = {}
-    for ax, key, label in ((axes[0], "a_max", "max |error| of the R3 angle [rad]"),
-                           (axes[1], "w_max", "max |error| of panel-3 angular velocity [rad/s]")):
+    for ax, key, unc, label in ((axes[0], "a_max", ref_uncertainty[0], "max |error| of the R3 angle [rad]"),
+                                (axes[1], "w_max", ref_uncertainty[1], "max |error| of panel-3 angular velocity [rad/s]")):
         pts = [(res[n]["cpu"], res[n][key]) for n in names]
         keep = set(pareto(pts))
         front[key] = [names[i] for i in sorted(keep, key=lambda i: pts[i][0])]
@@ -291,20 +333,21 @@ def plot_pareto(args, unique, res):
             c = unique[n]
             marker = "s" if c["preset"] else ("^" if c["integ"] == "trbdf2" else "o")
             ax.plot(*pts[i], marker, ms=7 if i in keep else 5,
-                    color="C3" if i in keep else "0.6", mfc="C3" if i in keep else "none")
-        fx = [res[n]["cpu"] for n in front[key]]
-        fy = [res[n][key] for n in front[key]]
-        ax.plot(fx, fy, "-", color="C3", lw=1)
-        for n in front[key]:
-            c = unique[n]
-            tag = c["preset"] or f"{c['tri']}t/{c['modes']}m/{c['truss']}k/{c['rtol']:.0e}"
-            ax.annotate(tag, (res[n]["cpu"], res[n][key]), fontsize=7, xytext=(4, 3), textcoords="offset points")
+                    color="C3" if i in keep else "0.5", mfc="C3" if i in keep else "none")
+        ax.plot([res[n]["cpu"] for n in front[key]], [res[n][key] for n in front[key]], "-", color="C3", lw=1)
+        for k, n in enumerate(front[key]):  # alternate label sides: neighbours on the front are close
+            ax.annotate(tag(unique[n]), (res[n]["cpu"], res[n][key]), fontsize=7,
+                        xytext=(5, 4) if k % 2 == 0 else (-5, -10), ha="left" if k % 2 == 0 else "right",
+                        textcoords="offset points")
+        ax.axhspan(ax.get_ylim()[0] if ax.get_ylim()[0] > 0 else unc / 10, unc, color="C0", alpha=0.12)
+        ax.axhline(unc, color="C0", lw=0.8, ls="--")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("CPU time for 0-10 s [s]")
-        ax.set_ylabel(label)
+        ax.set_xlabel("CPU time for phase 1 (0-10 s) [s]")
+        ax.set_ylabel(label + f"\n0-{args.t_cut:.2f} s (before the toggle)")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_title("red: non-dominated runs; o dopri5, ^ trbdf2, s preset", fontsize=9)
+    axes[0].set_title("red: non-dominated; o dopri5, ^ trbdf2, s preset;\n"
+                      "blue band: below the reference's own uncertainty", fontsize=9)
     fig.tight_layout()
     os.makedirs(args.img, exist_ok=True)
     fig.savefig(os.path.join(args.img, "accuracy_pareto.png"), dpi=110)
@@ -314,23 +357,27 @@ def plot_pareto(args, unique, res):
 
 def plot_signals(args, unique, res, ref):
     """Reference signals and the error of a few runs over time."""
-    fig, axes = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
-    axes[0].plot(ref["time"], ref["angle"], "k", lw=1.2, label="reference: R3 angle [rad]")
-    axes[0].plot(ref["time"], np.linalg.norm(ref["omega"], axis=1), "C0", lw=1.2,
+    fig, axes = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    t = ref["time"]
+    axes[0].plot(t, ref["angle"], "k", lw=1.2, label="reference: R3 angle [rad]")
+    axes[0].plot(t, np.linalg.norm(ref["omega"], axis=1), "C0", lw=1.2,
                  label="reference: |panel-3 angular velocity| [rad/s]")
+    base = res[run_name(BASE)]
+    axes[0].plot(base["time"], base["angle"], "C1--", lw=1, label=f"paper's model ({tag(BASE)}): R3 angle")
+    axes[0].axvline(args.t_cut, color="0.5", ls=":", lw=1)
     axes[0].legend(fontsize=8)
     axes[0].grid(alpha=0.3)
-    show = [run_name(dict(BASE, preset="fast", rtol=None, integ=None)), run_name(BASE),
-            run_name(dict(BASE, tri=40)), run_name(dict(BASE, modes=4)), run_name(dict(BASE, truss=0))]
-    t = ref["time"]
-    for n in show:
-        r = res[n]
-        if not np.isfinite(r["a_max"]):
-            continue
-        axes[1].semilogy(t, np.abs(np.interp(t, r["time"], r["angle"]) - ref["angle"]) + 1e-16, lw=0.9, label=n)
+    show = [dict(BASE, preset="fast", rtol=None, integ=None), BASE, dict(BASE, tri=500), dict(BASE, modes=4),
+            dict(BASE, truss=0)]
+    for c in show:
+        r = res[run_name(c)]
+        if np.isfinite(r["a_max"]):
+            axes[1].semilogy(t, np.abs(np.interp(t, r["time"], r["angle"]) - ref["angle"]) + 1e-16, lw=0.9,
+                             label=tag(c))
+    axes[1].axvline(args.t_cut, color="0.5", ls=":", lw=1)
     axes[1].set_ylabel("|R3 angle - reference| [rad]")
-    axes[1].set_xlabel("time [s]")
-    axes[1].set_ylim(1e-10, None)
+    axes[1].set_xlabel("time [s] (dotted: end of the window before the toggle)")
+    axes[1].set_ylim(1e-8, 10)
     axes[1].legend(fontsize=7)
     axes[1].grid(alpha=0.3, which="both")
     fig.tight_layout()
@@ -338,77 +385,189 @@ def plot_signals(args, unique, res, ref):
     plt.close(fig)
 
 
+def measured_commit(args):
+    """HEAD, and whether mbs-run/ differed from it in the work tree when the doc was written."""
+    dirty = subprocess.run(["git", "-C", REPO, "status", "--short", "--", "mbs-run", "common"],
+                           capture_output=True, text=True).stdout.strip()
+    built = os.path.getmtime(args.mbs_run)
+    import datetime
+    when = datetime.datetime.utcfromtimestamp(built).strftime("%Y-%m-%d %H:%M UTC")
+    return (f"`{git_commit()}`; mbs-run binary built {when}"
+            + ("; mbs-run/ or common/ had uncommitted edits in the work tree" if dirty else ""))
+
+
 def write_doc(args, runs, unique, res, ref, scene_src):
-    front = plot_pareto(args, unique, res)
+    R = lambda c: res[run_name(c)]  # noqa: E731
+    conv = [c for g, c in runs if g == "convergence"]
+    unc = (max(R(c)["a_max"] for c in conv), max(R(c)["w_max"] for c in conv))
+    front = plot_pareto(args, unique, res, unc)
     plot_signals(args, unique, res, ref)
     total_cpu = sum(r["cpu"] for r in res.values())
+    base = R(BASE)
     L = []
     L.append("# Speed versus accuracy on the flexible SAR antenna\n")
-    L.append("Generated by `make -C examples/sar-antenna study` (`examples/sar-antenna/study.py`); "
-             "do not edit the tables by hand.\n")
-    L.append(f"- measured commit: `{git_commit()}`")
-    L.append(f"- base scene: {scene_src}, phase 1 only (0-{T_END:g} s: R1 locked, actuator A "
-             "unfolds panel 3); isotropic panels (DST shells, pinned at hinge 2/3), trusses as beams")
-    L.append(f"- {len(unique)} runs, {total_cpu:.0f} s of CPU in all; CPU time is the results file's "
-             "`cpu_seconds` (process CPU time of the run). The machine was shared with other builds while "
-             "measuring, so single CPU figures scatter by roughly +-20 %; differences of 2x and more are real.")
-    L.append("- errors: max and RMS over the output samples (every 0.01 s) of |angle(R3) - reference| [rad] and "
-             "of |omega(B3) - reference| [rad/s] (norm of the global angular-velocity vector difference)")
+    L.append("Generated by `make -C examples/sar-antenna study` (`examples/sar-antenna/study.py`, "
+             "raw numbers in `out/study/summary.csv`); do not edit by hand.\n")
+    L.append(f"- measured: {measured_commit(args)}")
+    L.append(f"- base scene: {scene_src}, phase 1 only (0-{T_END:g} s: R1 locked, actuator A unfolds panel 3), "
+             "isotropic DST panels pinned at hinge 2/3, trusses as beams, 1 % modal damping as in the scene")
+    L.append(f"- {len(unique)} runs, {total_cpu:.0f} s of CPU in all. CPU time is the results file's `cpu_seconds` "
+             "(process CPU time). The 2-core machine was shared with other engineers' builds, so single "
+             "figures scatter by roughly +-20 %; factors of 1.5 and more are real.")
+    L.append("- errors: max and RMS over the output samples (every 0.01 s) of |angle(R3) - reference| [rad] and of "
+             "|omega(B3) - reference| [rad/s] (norm of the difference of the global angular-velocity vectors)")
     L.append("")
+    L.append("## Why the errors stop before the toggle\n")
+    L.append(f"The knee R3 reaches alignment (the straight S-R-S chord, a singular toggle) at "
+             f"{ref['t_align']:.3f} s in the reference. The toggle is a bifurcation (docs/mbs-run.md, 'The toggle "
+             "is a bifurcation point'): the knee either folds over to negative angles or bounces back, and which "
+             "branch a run takes is decided by differences at rounding level near the singular point. Runs of "
+             "the same model at different tolerances, and models that differ by a few modes, take different "
+             "branches (column `branch`); after it their R3 angles differ by up to 4 rad, which measures the "
+             "branch choice, not accuracy. The accuracy measures therefore cover "
+             f"0-{args.t_cut:.2f} s, ending {TOGGLE_MARGIN} s before the reference's alignment (R3 still "
+             f"~{np.interp(args.t_cut, ref['time'], ref['angle']):.2f} rad, far from the singular point); the "
+             "error of the alignment time and the branch are reported beside them, and the whole-phase errors "
+             "for completeness.\n")
     L.append("## The reference and how converged it is\n")
     L.append(f"Reference: {REF['tri']} triangles and {REF['modes']} modes per panel, {REF['truss']} modes per "
-             f"truss, rtol {REF['rtol']:.0e}, dopri5: {ref['cpu']:.1f} s CPU, {ref['steps']} steps. Peak values "
-             f"over phase 1: R3 angle from {ref['angle'].min():.3f} to {ref['angle'].max():.3f} rad, "
+             f"truss, rtol {REF['rtol']:.0e}, dopri5: {ref['cpu']:.1f} s CPU, {ref['steps']} steps; R3 from "
+             f"{ref['angle'][0]:.3f} rad to alignment at {ref['t_align']:.3f} s, then {ref['branch']}; "
              f"|omega(B3)| up to {np.linalg.norm(ref['omega'], axis=1).max():.3f} rad/s.\n")
-    L.append("Distance of the reference from the next-finest run in each factor (an estimate of the "
-             "reference's own error in that factor, which must lie well below the errors reported below):\n")
-    L.append("| next-finest run | R3 angle max | R3 angle RMS | omega max | omega RMS | CPU [s] |")
-    L.append("|---|---|---|---|---|---|")
-    for g, c in runs:
-        if g == "convergence":
-            r = res[run_name(c)]
-            L.append(f"| {describe(c, REF)} | {fmt(r['a_max'])} | {fmt(r['a_rms'])} | {fmt(r['w_max'])} | "
-                     f"{fmt(r['w_rms'])} | {r['cpu']:.1f} |")
-    # Integration: the paper's model at the next-tightest tolerance against the tightest.
-    tol = sorted(((c["rtol"] or preset_rtol(res[run_name(c)]), run_name(c)) for g, c in runs if g == "tolerance"))
-    r = res[tol[1][1]]
-    L.append(f"| rtol {tol[1][0]:.0e} (paper's model, against itself at rtol {tol[0][0]:.0e}) | {fmt(r['a_int'])} | - | "
-             f"{fmt(r['w_int'])} | - | {r['cpu']:.1f} |")
+    L.append("Distance of the reference from the next-finest run in each factor (before the toggle), an "
+             "estimate of the reference's own error in that factor:\n")
+    L.append("| next-finest run | R3 angle max | R3 angle RMS | omega max | omega RMS | alignment time | CPU [s] |")
+    L.append("|---|---|---|---|---|---|---|")
+    for c in conv:
+        r = R(c)
+        L.append(f"| {describe(c, REF)} | {fmt(r['a_max'])} | {fmt(r['a_rms'])} | {fmt(r['w_max'])} | "
+                 f"{fmt(r['w_rms'])} | {1000 * r['dt_align']:+.1f} ms | {r['cpu']:.1f} |")
+    tol = sorted((R(c)["rtol"], c) for g, c in runs if g == "tolerance" and R(c)["rtol"] == R(c)["rtol"])
+    r1 = R(tol[1][1])
+    L.append(f"| rtol {tol[1][0]:.0e} instead of {tol[0][0]:.0e} (paper's model) | {fmt(r1['a_int'])} | - | "
+             f"{fmt(r1['w_int'])} | - | - | {r1['cpu']:.1f} |")
     L.append("")
+    L.append(f"The integration error of the reference is negligible; its discretisation (mesh, modes) is not: "
+             f"the next-finest runs are {fmt(unc[0])} rad and {fmt(unc[1])} rad/s away. Errors below these "
+             "levels (blue band in the plot) are not resolved by this study; a finer reference (more than "
+             f"{REF['tri']} triangles) would be needed to rank them.\n")
     L.append("## Measured runs\n")
-    L.append("Errors against the reference (angle in rad, angular velocity in rad/s). Each group changes "
-             f"one factor of the paper's model ({BASE['tri']} triangles, {BASE['modes']} panel modes, "
-             f"{BASE['truss']} truss modes, rtol {BASE['rtol']:.0e}, dopri5); `int.` is the integration error "
-             "alone (against the same model at rtol 1e-8) where the model is the paper's.\n")
-    L.append("| group | triangles | panel modes | truss modes | rtol | integrator | CPU [s] | steps (rej.) | "
-             "R3 angle max | R3 angle RMS | omega max | omega RMS | angle max, int. | omega max, int. |")
-    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    L.append(f"Each group changes one factor of the paper's model ({tag(BASE)}: triangles/panel modes/truss "
+             "modes/rtol, dopri5), `combined` changes several. Errors before the toggle against the reference "
+             "(angle in rad, angular velocity in rad/s); `int.` is the integration error alone (against the "
+             "same model at rtol 1e-8) where the model is the paper's; `align` is the error of the alignment "
+             "time; whole-phase errors in the last two columns.\n")
+    L.append("| group | run | integrator | CPU [s] | steps (rej.) | R3 angle max | R3 angle RMS | omega max | "
+             "omega RMS | int. angle | int. omega | align [ms] | branch | whole phase: angle | omega |")
+    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for g, c in runs:
         if g in ("reference", "convergence"):
             continue
-        r = res[run_name(c)]
-        rt = f"{c['rtol']:.0e}" if c["rtol"] else f"preset {c['preset']}"
+        r = R(c)
+        name = tag(c) + (f" (rtol {r['rtol']:.0e})" if c["preset"] else "")
         status = "" if r["status"] == "completed" else f" **{r['status']}**"
-        L.append(f"| {g} | {c['tri']} | {c['modes']} | {c['truss']} | {rt} | {r['integrator']} | {r['cpu']:.2f} | "
-                 f"{r['steps']} ({r['rejected']}){status} | {fmt(r['a_max'])} | {fmt(r['a_rms'])} | "
-                 f"{fmt(r['w_max'])} | {fmt(r['w_rms'])} | {fmt(r.get('a_int', np.nan))} | "
-                 f"{fmt(r.get('w_int', np.nan))} |")
+        L.append(f"| {g} | {name} | {r['integrator']} | {r['cpu']:.2f} | {r['steps']} ({r['rejected']}){status} | "
+                 f"{fmt(r['a_max'])} | {fmt(r['a_rms'])} | {fmt(r['w_max'])} | {fmt(r['w_rms'])} | "
+                 f"{fmt(r.get('a_int', np.nan))} | {fmt(r.get('w_int', np.nan))} | {1000 * r['dt_align']:+.0f} | "
+                 f"{r['branch']} | {fmt(r['fa_max'])} | {fmt(r['fw_max'])} |")
     L.append("")
     L.append("## Pareto front\n")
     L.append("![CPU time versus error](img/accuracy_pareto.png)\n")
-    L.append("Non-dominated runs (no other run is both cheaper and more accurate), by the R3 angle error:\n")
-    for n in front["a_max"]:
-        L.append(f"- {n}: {res[n]['cpu']:.2f} s, {fmt(res[n]['a_max'])} rad")
-    L.append("\nand by the panel-3 angular-velocity error:\n")
-    for n in front["w_max"]:
-        L.append(f"- {n}: {res[n]['cpu']:.2f} s, {fmt(res[n]['w_max'])} rad/s")
-    L.append("")
+    for key, unit, what in (("a_max", "rad", "R3 angle"), ("w_max", "rad/s", "panel-3 angular velocity")):
+        L.append(f"Non-dominated runs (no other run both cheaper and more accurate), {what} error:\n")
+        for n in front[key]:
+            L.append(f"- {tag(unique[n])}: {res[n]['cpu']:.2f} s, {fmt(res[n][key])} {unit}")
+        L.append("")
     L.append("![reference signals and errors over time](img/accuracy_signals.png)\n")
-    L.append(open(os.path.join(HERE, "study_findings.md")).read().strip() + "\n"
-             if os.path.exists(os.path.join(HERE, "study_findings.md")) else "")
+    L += findings(args, runs, unique, res, ref, unc)
     with open(args.doc, "w") as f:
         f.write("\n".join(L) + "\n")
     print(f"study: wrote {args.doc}", file=sys.stderr)
+
+
+def findings(args, runs, unique, res, ref, unc):
+    R = lambda c: res[run_name(c)]  # noqa: E731
+    base = R(BASE)
+    k0 = R(dict(BASE, truss=0))
+    fast = R(dict(BASE, preset="fast", rtol=None, integ=None))
+    acc = R(dict(BASE, preset="accurate", rtol=None, integ=None))
+    loose, tight = R(dict(BASE, rtol=max(RTOLS))), R(dict(BASE, rtol=min(RTOLS)))
+    bdf = R(dict(BASE, integ="trbdf2", rtol=1e-4))
+    m200 = R(dict(BASE, tri=200, rtol=1e-4))
+    m8 = R(dict(BASE, modes=8, rtol=1e-4))
+    cheap = R(dict(BASE, modes=8, truss=0, rtol=1e-4))
+    tol_runs = [R(c) for g, c in runs if g == "tolerance"]
+    spread = max(abs(r["a_int"]) for r in tol_runs if np.isfinite(r["a_int"]))
+    f_b4 = "?"
+    try:
+        with h5py.File(os.path.join(args.bodies, "truss_B4.h5"), "r") as f:
+            f_b4 = f"{f['modes/frequencies_hz'][0]:.0f} Hz"
+    except (OSError, KeyError):
+        pass
+    mesh_cpu = [R(dict(BASE, tri=n))["cpu"] for n in MESHES]
+    L = ["## Findings\n"]
+    L.append(f"- **The model, not the integrator, sets the accuracy.** Before the toggle, runs of the paper's "
+             f"model at every tolerance from {max(RTOLS):.0e} to {min(RTOLS):.0e} agree to {fmt(spread)} rad on "
+             f"the R3 angle (integration error at rtol {max(RTOLS):.0e}: {fmt(loose['a_int'])} rad, "
+             f"{fmt(loose['w_int'])} rad/s), against a modelling error (mesh and modes) of {fmt(base['a_max'])} "
+             f"rad and {fmt(base['w_max'])} rad/s. Tightening rtol from {max(RTOLS):.0e} to {min(RTOLS):.0e} "
+             f"multiplies the CPU time by {tight['cpu'] / loose['cpu']:.1f} and changes nothing visible.")
+    L.append(f"- **Cost follows the tolerance as a 5th-order method should**: {loose['steps']} steps at rtol "
+             f"{max(RTOLS):.0e} to {tight['steps']} at {min(RTOLS):.0e}, a factor "
+             f"{tight['steps'] / max(loose['steps'], 1):.1f} for {np.log10(max(RTOLS) / min(RTOLS)):.0f} decades "
+             f"(steps ~ rtol^(-1/5) predicts {(max(RTOLS) / min(RTOLS)) ** 0.2:.0f}): the step is set by accuracy, "
+             f"not by the stiffest mode kept (truss B4 bends at {f_b4}, but the locked R1 and the joints at its "
+             "ends clamp those modes). Rigid trusses (0 modes) cut the CPU time "
+             f"{base['cpu'] / k0['cpu']:.1f}x but move the alignment by {1000 * k0['dt_align']:+.0f} ms and raise "
+             f"the angle error to {fmt(k0['a_max'])} rad: the trusses' compliance matters to the knee.")
+    L.append(f"- **TR-BDF2 does not pay here**: at rtol 1e-4 it costs {bdf['cpu']:.1f} s ({bdf['rejected']} "
+             f"rejected steps) against dopri5's {fast['cpu']:.1f} s, with a larger integration error "
+             f"({fmt(bdf['a_int'])} against {fmt(fast['a_int'])} rad).")
+    mesh = " / ".join(f"{n}: {fmt(R(dict(BASE, tri=n))['a_max'])}" for n in MESHES)
+    meshw = " / ".join(f"{fmt(R(dict(BASE, tri=n))['w_max'])}" for n in MESHES)
+    L.append(f"- **Mesh** (14 modes; {'/'.join(str(n) for n in MESHES)} triangles): R3 angle error {mesh} rad, "
+             f"omega error {meshw} rad/s. The mesh costs almost nothing in mbs-run ({mesh_cpu[0]:.1f} to "
+             f"{mesh_cpu[-1]:.1f} s CPU from {MESHES[0]} to {MESHES[-1]} triangles), only in fe-prep. The paper's 86-triangle mesh is not on "
+             f"the Pareto front: 200 triangles at rtol 1e-4 takes {m200['cpu']:.1f} s for {fmt(m200['a_max'])} "
+             f"rad and {fmt(m200['w_max'])} rad/s.")
+    modes = " / ".join(f"{m}: {fmt(R(dict(BASE, modes=m))['a_max'])}" for m in PANEL_MODES)
+    modesw = " / ".join(f"{fmt(R(dict(BASE, modes=m))['w_max'])}" for m in PANEL_MODES)
+    L.append(f"- **Modes per panel** (86 triangles; {'/'.join(str(m) for m in PANEL_MODES)} modes): R3 angle "
+             f"error {modes} rad, omega error {modesw} rad/s. Four modes are too few; from 8 modes on the angle "
+             "error stays at the 86-triangle mesh's level (the mesh limits it), while panel 3's angular velocity "
+             "keeps improving up to 14 modes. More modes cost CPU per evaluation (24 modes: "
+             f"{R(dict(BASE, modes=24))['cpu'] / base['cpu']:.1f}x the 14-mode run).")
+    L.append("")
+    L.append("## Presets\n")
+    L.append("`simulation: {preset: fast | accurate}` in a scene; keys written beside it win (e.g. "
+             "`{preset: fast, rtol: 1e-5}`), an unknown name is an input error with a did-you-mean. A preset sets "
+             "the tolerance and the integrator; mesh and modes are chosen in the body files and in "
+             "`flexible: {modes: N}`, so the table gives guidance for them:\n")
+    L.append("| preset | sets | measured on the paper's model (integration error; CPU for 0-10 s) | "
+             "model guidance (measured above) |")
+    L.append("|---|---|---|---|")
+    L.append(f"| `fast` | rtol {fast['rtol']:.0e}, dopri5 | {fmt(fast['a_int'])} rad, {fmt(fast['w_int'])} rad/s; "
+             f"{fast['cpu']:.2f} s, {base['cpu'] / fast['cpu']:.1f}x faster than the default rtol 1e-6 | panels "
+             f"8 modes ({m8['cpu']:.2f} s, {fmt(m8['a_max'])} rad); for a first look trusses with 0 modes "
+             f"({cheap['cpu']:.2f} s, {fmt(cheap['a_max'])} rad, alignment {1000 * cheap['dt_align']:+.0f} ms) |")
+    L.append(f"| `accurate` | rtol {acc['rtol']:.0e}, dopri5 | {fmt(acc['a_int'])} rad, {fmt(acc['w_int'])} rad/s; "
+             f"{acc['cpu']:.2f} s | panels 200 triangles or more and 14 modes, trusses 2 modes |")
+    L.append("")
+    L.append(f"Why these values: at rtol {fast['rtol']:.0e} the integration error is four decades below the "
+             "modelling error of every model in this sweep, at a cost close to the loosest tolerance; rtol "
+             f"{max(RTOLS):.0e} would save another {100 * (1 - loose['cpu'] / fast['cpu']):.0f} % on this scene "
+             f"({loose['rejected']} rejected steps against {fast['rejected']}), but the engine's validation "
+             "covers the toggle passage from rtol 1e-4 down (docs/mbs-run.md), and scenes with less modelling "
+             "error than this one would see the looser integration. `accurate` (rtol "
+             f"{acc['rtol']:.0e}) keeps one decade of margin below the default for scenes whose step is set by "
+             "accuracy rather than by stiff modes (the rigid SAR antenna, docs/mbs-run.md), at "
+             f"{acc['cpu'] / base['cpu']:.1f}x the default's cost here; beyond it accuracy is bought with mesh "
+             "and modes, not with the tolerance. dopri5 in both: TR-BDF2 was slower and less accurate at equal "
+             "tolerance. The branch taken after the toggle is not controlled by any preset: it changed with the "
+             "mesh and the modes in this sweep (table), so results past alignment should be read as one of two "
+             "possible continuations.")
+    L.append("")
+    return L
 
 
 def preset_rtol(r):
