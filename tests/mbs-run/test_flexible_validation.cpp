@@ -426,7 +426,7 @@ TEST(FlexibleValidation, KaneSpinUpBeamLinearModesFailAboveFirstFrequency) {
   // model's chordwise stiffness omega_1^2 - Omega^2 is negative and the tip
   // deflection grows exponentially, at ~sqrt(Omega^2 - omega_1^2): the known
   // failure of linear modes without geometric (centrifugal) stiffening; the
-  // real beam stiffens and stays within centimetres.
+  // real beam stiffens and its deflection stays a small fraction of L.
   const SpinUp fast = spinUp(bm, file, 10.0, 11.0);
   std::printf("[   info   ] Kane spin-up Os = 10 rad/s: status '%s', tip deflection %.3e m at %.2f s (reference "
               "%.3e m); |tip| > L at %.2f s (reference %.2f s); difference until then %.2e\n",
