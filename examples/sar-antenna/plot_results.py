@@ -49,7 +49,7 @@ class Run:
             # The hinge axes are global Y in this model (the paper's z axis).
             self.w3 = f["bodies/B3/angular_velocity"][:, 1]
             self.w2 = f["bodies/B2/angular_velocity"][:, 1]
-            self.modal3 = f["bodies/B3/modal"][:] if "bodies/B3/modal" in f else None
+            self.modal3 = f["bodies/B3/modal_coordinates"][:] if "bodies/B3/modal_coordinates" in f else None
             status = f.attrs["status"]
             self.status = status.decode() if isinstance(status, bytes) else status
             self.cpu = float(f.attrs.get("cpu_seconds", np.nan))
