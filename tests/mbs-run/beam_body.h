@@ -29,6 +29,10 @@ struct BeamSpec {
   int elements = 20;
   int modes = 6;                 // kept in the file
   double stiffness_scale = 1.0;  // multiplies K (eigenvalues), shapes unchanged
+  // Pinned root: node 0 keeps its rotation; the rigid rotation about the pin
+  // (eigenvalue 0) is dropped and the next `modes` kept (the reference
+  // condition of a hinge, as fe-prep's "pin").
+  bool pinned_root = false;
 };
 
 struct BeamModel {
@@ -38,7 +42,8 @@ struct BeamModel {
 };
 
 inline BeamModel cantileverBeam(const BeamSpec& s) {
-  const int ne = s.elements, nn = ne + 1, nd = 2 * ne;  // free dofs: nodes 1..ne
+  const int ne = s.elements, nn = ne + 1, p = s.pinned_root ? 1 : 0;
+  const int nd = 2 * ne + p;  // free dofs: [theta_0 if pinned], (v, theta) of nodes 1..ne
   const double h = s.length / ne;
   BeamModel b;
   b.K = Eigen::MatrixXd::Zero(nd, nd);
@@ -49,7 +54,9 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a)
       for (int c = 0; c < 4; ++c) {
-        const int ga = 2 * e + a - 2, gc = 2 * e + c - 2;  // node e's dofs are 2e-2, 2e-1
+        // Element e's local dof a is global 2e + a - 2 (+ p); the root's
+        // translation is always fixed, its rotation only when clamped.
+        const int ga = 2 * e + a - 2 + p, gc = 2 * e + c - 2 + p;
         if (ga >= 0 && gc >= 0) b.K(ga, gc) += ke(a, c);
       }
   b.node_mass = Eigen::VectorXd::Constant(nn, s.rho_a * h);
@@ -57,9 +64,10 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
   b.node_mass(ne) *= 0.5;
   b.node_rotary = b.node_mass * (h * h / 12.0);
   b.M = Eigen::MatrixXd::Zero(nd, nd);
+  if (p) b.M(0, 0) = b.node_rotary(0);
   for (int k = 1; k < nn; ++k) {
-    b.M(2 * k - 2, 2 * k - 2) = b.node_mass(k);
-    b.M(2 * k - 1, 2 * k - 1) = b.node_rotary(k);
+    b.M(2 * k - 2 + p, 2 * k - 2 + p) = b.node_mass(k);
+    b.M(2 * k - 1 + p, 2 * k - 1 + p) = b.node_rotary(k);
   }
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(b.K, b.M);
   FlexBody& f = b.body;
@@ -74,14 +82,15 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
   }
   const int nm = s.modes;
   f.shapes = Eigen::MatrixXd::Zero(6 * nn, nm);
-  f.eigenvalues = es.eigenvalues().head(nm);
+  f.eigenvalues = es.eigenvalues().segment(p, nm);
   f.frequencies_hz = f.eigenvalues.array().sqrt() / (2 * M_PI);
   for (int j = 0; j < nm; ++j) {
-    Eigen::VectorXd phi = es.eigenvectors().col(j);  // M-orthonormal
-    if (phi(nd - 2) < 0) phi = -phi;                 // tip moves along +y
+    Eigen::VectorXd phi = es.eigenvectors().col(j + p);  // M-orthonormal
+    if (phi(nd - 2) < 0) phi = -phi;                     // tip moves along +y
+    if (p) f.shapes(5, j) = phi(0);
     for (int k = 1; k < nn; ++k) {
-      f.shapes(6 * k + 1, j) = phi(2 * k - 2);
-      f.shapes(6 * k + 5, j) = phi(2 * k - 1);
+      f.shapes(6 * k + 1, j) = phi(2 * k - 2 + p);
+      f.shapes(6 * k + 5, j) = phi(2 * k - 1 + p);
     }
   }
   for (int k : {0, ne}) {
