@@ -7,6 +7,7 @@
 #include "common/cli.h"
 #include "common/files.h"
 #include "common/version.h"
+#include "mbs-run/constraints.h"
 #include "mbs-run/results.h"
 #include "mbs-run/scene.h"
 #include "mbs-run/simulation.h"
@@ -28,6 +29,23 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std:
   const double t = r.t_reached;
   std::printf("mbs-run %s: %s -> %s\n", fc::version(), m.source.c_str(), out.c_str());
   std::printf("  status: %s (t = %.6g of %.6g s)\n", r.status.c_str(), t, m.settings.t_end);
+  // What was modelled: only what the scene asks for (rigid bodies read no file,
+  // flexible ones only their first `modes` modes).
+  int n_flexible = 0, n_modes = 0, n_fixed = 0, n_rows = 0;
+  for (const auto& b : m.bodies) {
+    n_fixed += b.fixed ? 1 : 0;
+    n_flexible += b.modes > 0 ? 1 : 0;
+    n_modes += b.modes;
+  }
+  for (const auto& jt : m.joints) {
+    fc::mbs::JointRuntime rt;
+    rt.enabled = jt.enabled;
+    rt.locked = jt.locked;
+    n_rows += fc::mbs::constraintCount(jt, rt);
+  }
+  std::printf("  model: %zu bodies (%d fixed, %d flexible with %d modes in all), %d position / %d velocity "
+              "coordinates, %zu joints with %d constraint equations at t = 0\n",
+              m.bodies.size(), n_fixed, n_flexible, n_modes, m.nq, m.nv, m.joints.size(), n_rows);
   std::printf("  integrator %s, rtol %.3g: %ld steps, %ld rejected, %ld evaluations, AL iterations <= %d\n",
               r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.max_al_iterations);
   std::printf("  CPU %.3f s, real-time factor %.3g (simulated s per CPU s)\n", r.cpu_seconds,
