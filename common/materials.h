@@ -31,6 +31,12 @@ Material makeOrthotropic(const std::string& name, double E1, double E2, double E
                          double rho);
 Material makeAnisotropic(const std::string& name, const Matrix6d& C, double rho);
 
+// Compliance of an orthotropic material in its axes (Voigt order, engineering
+// shear), without admissibility checks: for readers of other formats (VABS) that
+// check the resulting stiffness themselves.
+Matrix6d orthotropicCompliance(double E1, double E2, double E3, double G12, double G13,
+                               double G23, double nu12, double nu13, double nu23);
+
 using MaterialLibrary = std::map<std::string, Material>;
 
 // Reads a `materials:` block (with `include: FILE`); bad entries raise InputError.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/input.h"
+#include "common/materials.h"
 
 namespace fc::section {
 
@@ -110,17 +111,7 @@ Matrix6d upperTriangle(const std::vector<double>& c) {
 
 Matrix6d orthotropicStiffness(double E1, double E2, double E3, double G12, double G13,
                               double G23, double nu12, double nu13, double nu23) {
-  Matrix6d S = Matrix6d::Zero();
-  S(0, 0) = 1 / E1;
-  S(1, 1) = 1 / E2;
-  S(2, 2) = 1 / E3;
-  S(0, 1) = S(1, 0) = -nu12 / E1;
-  S(0, 2) = S(2, 0) = -nu13 / E1;
-  S(1, 2) = S(2, 1) = -nu23 / E2;
-  S(3, 3) = 1 / G23;
-  S(4, 4) = 1 / G13;
-  S(5, 5) = 1 / G12;
-  return S.inverse();
+  return fc::orthotropicCompliance(E1, E2, E3, G12, G13, G23, nu12, nu13, nu23).inverse();
 }
 
 VabsModel parseVabs(const std::string& text, const std::string& name) {

@@ -14,16 +14,6 @@ materials:
                G12: 7.6e9, G13: 7.6e9, G23: 8.504e9,
                nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}
   cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
-laminates:
-  layup1: [{material: im6_sc1081, thickness: 0.0005, angle_deg: 0},
-           {material: im6_sc1081, thickness: 0.0005, angle_deg: 0},
-           {material: im6_sc1081, thickness: 0.0005, angle_deg: 0},
-           {material: im6_sc1081, thickness: 0.0005, angle_deg: 0}]
-  layup2:
-    - {material: im6_sc1081, thickness: 0.0005, angle_deg: 0}
-    - {material: im6_sc1081, thickness: 0.0005, angle_deg: 90}
-    - {material: im6_sc1081, thickness: 0.0005, angle_deg: 90}
-    - {material: im6_sc1081, thickness: 0.0005, angle_deg: 0}
 )");
   return fc::readMaterials(root["materials"]);
 }
