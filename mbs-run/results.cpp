@@ -74,6 +74,10 @@ void writeResults(const std::string& path, const Model& model, const Results& r,
   f.setAttribute("/", "rejected_steps", r.rejected_steps);
   f.setAttribute("/", "status", r.status);
   f.setAttribute("/", "integrator", r.integrator);
+  // The tolerances actually used (scene, preset or --rtol), for studies that
+  // compare runs.
+  f.setAttribute("/", "rtol", model.settings.rtol);
+  f.setAttribute("/", "atol", model.settings.atol > 0 ? model.settings.atol : 1e-3 * model.settings.rtol);
   f.setAttribute("/", "t_reached", r.t_reached);
   f.setAttribute("/", "max_constraint_violation", r.max_violation);
   f.setAttribute("/", "energy_balance_error", r.energy_balance_error);

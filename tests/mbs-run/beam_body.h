@@ -209,7 +209,9 @@ struct PlanarDoubleBeam {
         const Eigen::RowVectorXd thz = b.shapes.row(6 * k + 5).head(nm);
         const Eigen::Vector2d sk(b.nodes(k, 0), phi.dot(w));
         Eigen::MatrixXd Jk = Eigen::MatrixXd::Zero(2, n);
-        Jk.col(it) = Rp * sk;
+        const Eigen::Vector2d jt = Rp * sk;
+        Jk(0, it) = jt(0);  // element-wise: GCC 12 reports a false -Wstringop-overread
+        Jk(1, it) = jt(1);  // on a vectorised copy into a dynamic column
         Jk.middleCols(it + 1, nm) = R.col(1) * phi;
         Eigen::Vector2d a = -R * sk * qd(it) * qd(it) + 2 * Rp.col(1) * phi.dot(wd) * qd(it);
         if (body == 1) {  // carried by beam 1's tip

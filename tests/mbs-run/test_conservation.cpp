@@ -76,7 +76,7 @@ simulation: {t_end: 10.0, output_step: 0.02, rtol: 1.0e-9}
   Ja << 0.05, 0.01, 0, 0.01, 0.08, 0, 0, 0, 0.1;
   const double Ib = 1.0 * (3 * 0.025 * 0.025 + 0.64) / 12;
   const Eigen::Matrix3d Jb = Eigen::Vector3d(0.5 * 0.025 * 0.025, Ib, Ib).asDiagonal();
-  Eigen::Vector3d P0, L0;
+  Eigen::Vector3d P0 = Eigen::Vector3d::Zero(), L0 = Eigen::Vector3d::Zero();
   double dP = 0, dL = 0, dE = 0;
   for (std::size_t k = 0; k < r.time.size(); ++k) {
     const Eigen::Matrix3d Aa = fc::rotationMatrix(r.orientation[0][k]), Ab = fc::rotationMatrix(r.orientation[1][k]);

@@ -50,7 +50,7 @@ simulation: {t_end: 0.2, output_step: 0.01, rtol: 1.0e-6}
   ASSERT_EQ(r.status, "completed");
   const FlexBodyFile f = readFlexBody(file, nm);
   double dP = 0, dL = 0, dE = 0, wmax = 0;
-  Eigen::Vector3d P0, L0;
+  Eigen::Vector3d P0 = Eigen::Vector3d::Zero(), L0 = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < r.time.size(); ++k) {
     const Eigen::Matrix3d A = fc::rotationMatrix(r.orientation[0][k]);
     Eigen::VectorXd v(6 + nm);

@@ -118,7 +118,7 @@ TEST(FlexibleEngine, FlexiblePendulumConservesEnergy) {
                 "dissipated %.3g J, violation %.2e, %ld steps\n",
                 zeta, dE, scale, umax, r.dissipated.back(), r.max_violation, r.steps);
     EXPECT_GT(umax, 1e-3 * scale);  // the modes are really excited
-    if (zeta > 0) EXPECT_GT(r.dissipated.back(), 1e-3 * scale);
+    if (zeta > 0) { EXPECT_GT(r.dissipated.back(), 1e-3 * scale); }
     // Local errors of at most rtol per step add up linearly (as for the rigid
     // energy test); the projection adds nothing measurable.
     EXPECT_LT(dE, r.steps * 1e-9 * scale);
@@ -141,7 +141,7 @@ simulation: {t_end: 3.0, output_step: 0.01, rtol: 1.0e-9}
   ASSERT_EQ(r.status, "completed");
   const FlexBodyFile f = readFlexBody(file, 4);
   double dP = 0, dL = 0, dE = 0;
-  Eigen::Vector3d P0, L0;
+  Eigen::Vector3d P0 = Eigen::Vector3d::Zero(), L0 = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < r.time.size(); ++k) {
     const Eigen::Matrix3d A = fc::rotationMatrix(r.orientation[0][k]);
     Eigen::VectorXd v(10);

@@ -106,9 +106,9 @@ TEST(FlexibleValidation, DampedCantileverSettlesAtBeamTheoryDeflection) {
       EXPECT_LT(std::abs(trunc), std::abs(previous_error) / 3);
     }
     previous_error = trunc;
-    if (n == 1) EXPECT_NEAR(trunc, 0.0, 0.02);  // one mode carries 98.7 % (beam theory: 1.0131 q L^4/8EI)
+    if (n == 1) { EXPECT_NEAR(trunc, 0.0, 0.02); }  // one mode carries 98.7 % (beam theory: 1.0131 q L^4/8EI)
     // Four modes: truncation (2e-5) + discretisation (8.3e-4, bound above).
-    if (n == 4) EXPECT_NEAR(tip / exact, 1.0, 1e-3);
+    if (n == 4) { EXPECT_NEAR(tip / exact, 1.0, 1e-3); }
   }
   std::filesystem::remove(file);
 }
@@ -218,7 +218,7 @@ TEST(FlexibleValidation, HingedBodyWantsPinnedModes) {
         I_o += bm.node_mass(k) * std::pow(bm.body.nodes(k, 0), 2) + bm.node_rotary(k);
         mgc += bm.node_mass(k) * 9.81 * bm.body.nodes(k, 0);
       }
-    if (pinned) EXPECT_LT(bm.body.interface("root").shapes.leftCols(3).norm(), 1e-15);  // pin: no translation
+    if (pinned) { EXPECT_LT(bm.body.interface("root").shapes.leftCols(3).norm(), 1e-15); }  // pin: no translation
     const std::string file = writeBeam(bm, pinned ? "pinned" : "clamped");
     const Results r = simulate(
         sceneFromText(beamScene(file, 2, 0.7,

@@ -54,6 +54,9 @@ TEST(ResultsFile, ContractLayout) {
   EXPECT_EQ(f.shape("/diagnostics/constraint_violation")[0], hsize_t(n));
   EXPECT_EQ(f.stringAttribute("/", "status"), "completed");
   EXPECT_GT(f.doubleAttribute("/", "cpu_seconds"), 0.0);
+  EXPECT_DOUBLE_EQ(f.doubleAttribute("/", "rtol"), 1.0e-8);  // the scene's
+  EXPECT_DOUBLE_EQ(f.doubleAttribute("/", "atol"), 1.0e-11);  // default: 1e-3 rtol
+  EXPECT_EQ(f.stringAttribute("/time", "units"), "s");        // self-describing datasets
   // Energy balance from the file: T + V + dissipated is constant.
   const Eigen::VectorXd T = f.readVector("/energy/kinetic"), V = f.readVector("/energy/potential"),
                         D = f.readVector("/energy/dissipated");
