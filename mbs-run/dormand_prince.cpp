@@ -42,13 +42,9 @@ class DormandPrince final : public Integrator {
   bool step(double t_limit) override {
     const double span = t_limit - t_;
     if (span <= 0.0) return false;
-    const double hmin = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
     for (;;) {
-      double h = std::min(h_, span);
-      if (tol_.max_step > 0) h = std::min(h, tol_.max_step);
-      // Land exactly on t_limit rather than leaving a sliver.
-      if (span - h < 0.01 * h) h = span;
-      if (h < hmin) return false;
+      const double h = nextStepSize(h_, t_, span, tol_);
+      if (h <= 0.0) return false;
       const VectorXd& y0 = y_;
       const VectorXd& k1 = k1_;
       ytmp_ = y0 + h * a21 * k1;

@@ -3,7 +3,10 @@
 // driver (events, output sampling, projections) does not care which is used.
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -40,6 +43,17 @@ class Integrator {
   virtual std::string name() const = 0;
   long steps = 0, rejected = 0;
 };
+
+// The step to try from t towards t + span: the controller's h, capped by
+// max_step and stretched to land exactly on the limit rather than leave a
+// sliver; 0 when it falls below the round-off floor at t (the integrator gives up).
+inline double nextStepSize(double h_controller, double t, double span, const Tolerances& tol) {
+  const double hmin = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
+  double h = std::min(h_controller, span);
+  if (tol.max_step > 0) h = std::min(h, tol.max_step);
+  if (span - h < 0.01 * h) h = span;
+  return h < hmin ? 0.0 : h;
+}
 
 // Dormand & Prince RK5(4)7M with Hairer's 4th-order dense output (Hairer,
 // Norsett & Wanner, Solving ODEs I, sec. II.5-6, code DOPRI5), FSAL, PI step

@@ -42,12 +42,9 @@ class TrBdf2 final : public Integrator {
   bool step(double t_limit) override {
     const double span = t_limit - t_;
     if (span <= 0.0) return false;
-    const double hmin = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
     for (;;) {
-      double h = std::min(h_, span);
-      if (tol_.max_step > 0) h = std::min(h, tol_.max_step);
-      if (span - h < 0.01 * h) h = span;
-      if (h < hmin) return false;
+      const double h = nextStepSize(h_, t_, span, tol_);
+      if (h <= 0.0) return false;
       if (!jac_valid_) computeJacobian();
       if (h_lu_ <= 0.0 || h > 1.3 * h_lu_ || h < h_lu_ / 1.3) {
         lu_.compute(MatrixXd::Identity(y_.size(), y_.size()) - kD * h * J_);
