@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "common/flexbody.h"
+#include "helpers.h"
 
 namespace fc::mbs::test {
 
@@ -108,13 +109,7 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
 }
 
 inline std::string writeBeam(const BeamModel& b, const std::string& tag) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("flexval_" + std::to_string(::getpid()) + "_" + tag + ".h5"))
-          .string();
-  fc::Provenance prov;
-  prov.inputs_sha256 = "test";
-  writeFlexBody(path, b.body, computeInertiaInvariants(b.body), prov);
-  return path;
+  return writeTempBody(b.body, "flexval_" + tag);
 }
 
 // Planar motion of the lumped beam about its root (a revolute about z at the

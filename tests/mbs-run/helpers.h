@@ -1,10 +1,15 @@
 #pragma once
 // Shared helpers of the mbs-run tests: scenes from YAML text, and a classical
 // fixed-step RK4 for the independent minimal-coordinate reference solutions.
+#include <unistd.h>
+
 #include <Eigen/Dense>
+#include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <string>
 
+#include "common/flexbody.h"
 #include "common/input.h"
 #include "mbs-run/scene.h"
 
@@ -12,6 +17,25 @@ namespace fc::mbs::test {
 
 inline Model sceneFromText(const std::string& yaml) {
   return parseScene(fc::InputNode::loadString(yaml, "test.yaml"));
+}
+
+// Writes a body file (with its invariants) to a per-process temporary path
+// named after `tag`, for scenes that load it.
+inline std::string writeTempBody(const fc::FlexBody& body, const std::string& tag) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            (tag + "_" + std::to_string(::getpid()) + ".h5"))
+                               .string();
+  fc::Provenance prov;
+  prov.inputs_sha256 = "test";
+  fc::writeFlexBody(path, body, fc::computeInertiaInvariants(body), prov);
+  return path;
+}
+
+// A vector as YAML flow text, at full precision.
+inline std::string yamlVector(const Eigen::Vector3d& v) {
+  char s[128];
+  std::snprintf(s, sizeof s, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+  return s;
 }
 
 // y' = f(t, y), classical Runge-Kutta with n equal steps from t0 to t1.

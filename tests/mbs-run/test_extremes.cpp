@@ -32,12 +32,7 @@ TEST(Extremes, TwoHundredModesFreeFloating) {
   const int nm = 200;
   // 40 nodes x 6 dofs = 240 >= 200 independent mass-orthonormal modes, 1-20 Hz.
   const FlexBody b = fc::testing::randomBody(40, nm, 21, 0.5, 1.0, 20.0);
-  const std::string file = (std::filesystem::temp_directory_path() /
-                            ("flexval_" + std::to_string(::getpid()) + "_200modes.h5"))
-                               .string();
-  fc::Provenance prov;
-  prov.inputs_sha256 = "test";
-  writeFlexBody(file, b, computeInertiaInvariants(b), prov);
+  const std::string file = writeTempBody(b, "flexval_200modes");
   const Results r = simulate(sceneFromText(R"(
 bodies:
   - name: b

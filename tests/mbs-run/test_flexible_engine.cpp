@@ -23,20 +23,7 @@ namespace fc::mbs::test {
 namespace {
 
 std::string writeBody(int nm, unsigned seed) {
-  const FlexBody b = fc::testing::randomBody(8, nm, seed, 0.4, 1.0, 3.0);
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("mbs_flex_" + std::to_string(::getpid()) + "_" + std::to_string(seed) + ".h5"))
-                               .string();
-  fc::Provenance prov;
-  prov.inputs_sha256 = "test";
-  writeFlexBody(path, b, computeInertiaInvariants(b), prov);
-  return path;
-}
-
-std::string vec(const Eigen::Vector3d& v) {
-  char s[128];
-  std::snprintf(s, sizeof s, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
-  return s;
+  return writeTempBody(fc::testing::randomBody(8, nm, seed, 0.4, 1.0, 3.0), "mbs_flex_" + std::to_string(seed));
 }
 
 // A pendulum: the body hangs from the ground at interface P0 (or, rigid, at
@@ -69,12 +56,12 @@ TEST(FlexibleEngine, ZeroModesIsTheRigidBody) {
   std::snprintf(rigid, sizeof rigid,
                 "rigid: {mass: %.17g, center_of_mass: %s, inertia: [[%.17g, %.17g, %.17g], [%.17g, %.17g, %.17g], "
                 "[%.17g, %.17g, %.17g]]}",
-                inv.mass, vec(c).c_str(), Ic(0, 0), Ic(0, 1), Ic(0, 2), Ic(1, 0), Ic(1, 1), Ic(1, 2), Ic(2, 0),
+                inv.mass, yamlVector(c).c_str(), Ic(0, 0), Ic(0, 1), Ic(0, 2), Ic(1, 0), Ic(1, 1), Ic(1, 2), Ic(2, 0),
                 Ic(2, 1), Ic(2, 2));
   const Eigen::Vector3d p0 = f.body.interfaces[0].position;
   // The pendulum's first point puts the body's P0 at the origin.
   const std::string pos = "position: [0, 0, 0]\n    ";
-  const Results rr = simulate(sceneFromText(pendulum(pos + rigid, vec(p0), 2.0)), {true});
+  const Results rr = simulate(sceneFromText(pendulum(pos + rigid, yamlVector(p0), 2.0)), {true});
   const Results rf = simulate(
       sceneFromText(pendulum(pos + "flexible: {file: " + file + ", modes: 0}", f.body.interfaces[0].name, 2.0)),
       {true});
@@ -100,7 +87,7 @@ TEST(FlexibleEngine, FlexiblePendulumConservesEnergy) {
   // satisfy the joint partly by deforming the light modes).
   const Eigen::Vector3d p0 = readFlexBody(file, 3).body.interfaces[0].position;
   const Eigen::Matrix3d A = fc::rotationMatrix(Eigen::Vector4d(0.9, 0.3, -0.2, 0.24494897427831783));
-  const std::string pos = "position: " + vec(-A * p0) + "\n    ";
+  const std::string pos = "position: " + yamlVector(-A * p0) + "\n    ";
   for (double zeta : {0.0, 0.05}) {
     char block[256];
     std::snprintf(block, sizeof block, "flexible: {file: %s, modes: 3, damping_ratio: %g}", file.c_str(), zeta);

@@ -42,19 +42,7 @@ std::string writeKneeBody(unsigned seed, Eigen::Vector3d& p0, Eigen::Vector3d& p
   const FlexBody b = fc::testing::randomBody(8, 4, seed, 0.3, 20.0, 200.0);
   p0 = b.interfaces[0].position;
   p4 = b.interfaces[1].position;
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("mbs_knee_" + std::to_string(::getpid()) + "_" + std::to_string(seed) + ".h5"))
-                               .string();
-  fc::Provenance prov;
-  prov.inputs_sha256 = "test";
-  writeFlexBody(path, b, computeInertiaInvariants(b), prov);
-  return path;
-}
-
-std::string vec(const Eigen::Vector3d& v) {
-  char s[128];
-  std::snprintf(s, sizeof s, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
-  return s;
+  return writeTempBody(b, "mbs_knee_" + std::to_string(seed));
 }
 
 // Body 1 hangs with its interface P0 at the origin; body 2's P0 sits on body
@@ -70,11 +58,11 @@ bodies:
   - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
   - name: b1
     flexible: {file: )" + k.file1 + R"(, modes: 4, damping_ratio: )" + std::to_string(zeta) + R"(}
-    position: )" + vec(r1) + R"(
+    position: )" + yamlVector(r1) + R"(
     angular_velocity: [0.4, 0.0, 0.8]
   - name: b2
     flexible: {file: )" + k.file2 + R"(, modes: 4, damping_ratio: )" + std::to_string(zeta) + R"(}
-    position: )" + vec(r2) + R"(
+    position: )" + yamlVector(r2) + R"(
 joints:
   - {name: S, type: spherical, bodies: [ground, b1], points: [[0, 0, 0], P0]}
   - {name: R, type: revolute, bodies: [b1, b2], points: [P4, P0], axes: [[0, 1, 0], [0, 1, 0]],
