@@ -1,31 +1,201 @@
 #include "mbs-run/augmented_lagrangian.h"
 
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
 namespace fc::mbs {
 
-void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, double alpha,
-                         bool same_pattern) {
+using Eigen::VectorXd;
+
+void BlockDiagonal::multiply(const VectorXd& x, VectorXd& y) const {
+  y.resize(size);
+  for (std::size_t b = 0; b < block.size(); ++b) {
+    const auto n = block[b].rows();
+    y.segment(offset[b], n).noalias() = block[b] * x.segment(offset[b], n);
+  }
+}
+
+SparseMatrixd BlockDiagonal::toSparse() const {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t b = 0; b < block.size(); ++b)
+    for (Eigen::Index c = 0; c < block[b].cols(); ++c)
+      for (Eigen::Index r = 0; r < block[b].rows(); ++r)
+        t.emplace_back(offset[b] + int(r), offset[b] + int(c), block[b](r, c));
+  SparseMatrixd M(size, size);
+  M.setFromTriplets(t.begin(), t.end());
+  return M;
+}
+
+BlockDiagonal BlockDiagonal::fromSparse(const SparseMatrixd& M) {
+  // A column range [start, end) closes a block when no entry of its columns
+  // lies outside it: track the farthest row reached (and, the pattern being
+  // symmetric, the farthest column) while sweeping the columns.
+  BlockDiagonal D;
+  D.size = int(M.rows());
+  int start = 0, reach = 0;
+  for (int c = 0; c < M.cols(); ++c) {
+    for (SparseMatrixd::InnerIterator it(M, c); it; ++it) {
+      reach = std::max(reach, int(it.row()));
+    }
+    reach = std::max(reach, c);
+    if (reach == c) {
+      D.offset.push_back(start);
+      D.block.push_back(Eigen::MatrixXd(M.block(start, start, c + 1 - start, c + 1 - start)));
+      start = c + 1;
+      reach = start;
+    }
+  }
+  return D;
+}
+
+void AlSolver::factorize(const BlockDiagonal& M, const SparseMatrixd& Phi_v, double alpha) {
   alpha_ = alpha;
-  SparseMatrixd K = M;
-  if (Phi_v.rows() > 0) K += alpha * SparseMatrixd(Phi_v.transpose() * Phi_v);
-  if (!same_pattern || !analyzed_) {
+  M_ = M;
+  Phi_ = Phi_v;
+  M_sparse_.resize(0, 0);
+  const bool schur = method_ == AlMethod::BlockSchur ||
+                     (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
+  if (schur && factorizeSchur()) {
+    used_ = AlMethod::BlockSchur;
+    return;
+  }
+  M_sparse_ = M_.toSparse();
+  factorizeSparse();
+}
+
+void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, double alpha) {
+  alpha_ = alpha;
+  Phi_ = Phi_v;
+  const bool schur = method_ == AlMethod::BlockSchur ||
+                     (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
+  if (schur) {
+    M_ = BlockDiagonal::fromSparse(M);
+    M_sparse_.resize(0, 0);
+    if (factorizeSchur()) {
+      used_ = AlMethod::BlockSchur;
+      return;
+    }
+  }
+  M_ = BlockDiagonal{};
+  M_sparse_ = M;
+  factorizeSparse();
+}
+
+bool AlSolver::factorizeSchur() {
+  const int m = int(Phi_.rows());
+  const std::size_t nb = M_.block.size();
+  const bool same_pattern = blocks_.size() == nb && phi_outer_.size() == std::size_t(Phi_.cols() + 1) &&
+                            std::equal(phi_outer_.begin(), phi_outer_.end(), Phi_.outerIndexPtr()) &&
+                            phi_inner_.size() == std::size_t(Phi_.nonZeros()) &&
+                            std::equal(phi_inner_.begin(), phi_inner_.end(), Phi_.innerIndexPtr());
+  if (!same_pattern) {
+    blocks_.assign(nb, BlockData{});
+    std::vector<int> local(m, -1);
+    for (std::size_t b = 0; b < nb; ++b) {
+      BlockData& B = blocks_[b];
+      const int c0 = M_.offset[b], n = int(M_.block[b].rows());
+      for (int c = c0; c < c0 + n; ++c)
+        for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it)
+          if (local[it.row()] != int(b)) {
+            local[it.row()] = int(b);
+            B.rows.push_back(int(it.row()));
+          }
+      std::sort(B.rows.begin(), B.rows.end());
+      std::vector<int> index(m, -1);
+      for (std::size_t k = 0; k < B.rows.size(); ++k) index[B.rows[k]] = int(k);
+      for (int c = c0; c < c0 + n; ++c)
+        for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.slot.push_back(index[it.row()]);
+    }
+    phi_outer_.assign(Phi_.outerIndexPtr(), Phi_.outerIndexPtr() + Phi_.cols() + 1);
+    phi_inner_.assign(Phi_.innerIndexPtr(), Phi_.innerIndexPtr() + Phi_.nonZeros());
+  }
+  S_.setZero(m, m);
+  for (std::size_t b = 0; b < nb; ++b) {
+    BlockData& B = blocks_[b];
+    const int c0 = M_.offset[b];
+    const int n = int(M_.block[b].rows()), nr = int(B.rows.size());
+    B.llt.compute(M_.block[b]);
+    if (B.llt.info() != Eigen::Success) {
+      phi_outer_.clear();  // the sparse path will run; rebuild the pattern next time
+      return false;  // singular body block: K may still be definite
+    }
+    if (nr == 0) continue;
+    B.V.setZero(n, nr);
+    std::size_t k = 0;
+    for (int c = c0; c < c0 + n; ++c)
+      for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.V(c - c0, B.slot[k++]) = it.value();
+    B.llt.matrixL().solveInPlace(B.V);
+    B.G.noalias() = B.V.transpose() * B.V;
+    for (int j = 0; j < nr; ++j)
+      for (int i = 0; i < nr; ++i) S_(B.rows[i], B.rows[j]) += B.G(i, j);
+  }
+  S_.diagonal().array() += 1.0 / alpha_;
+  // I/a + Phi M^-1 Phi^T is positive definite, but with redundant rows its
+  // condition number is of order a / (smallest inertia): Cholesky can meet a
+  // rounding-negative pivot, and LDL^T with pivoting cannot.
+  s_llt_.compute(S_);
+  s_use_ldlt_ = s_llt_.info() != Eigen::Success;
+  if (s_use_ldlt_) s_ldlt_.compute(S_);
+  ok_ = !s_use_ldlt_ || s_ldlt_.info() == Eigen::Success;
+  return ok_;
+}
+
+void AlSolver::factorizeSparse() {
+  used_ = AlMethod::SparseLdlt;
+  SparseMatrixd K = M_sparse_;
+  if (Phi_.rows() > 0) K += alpha_ * SparseMatrixd(Phi_.transpose() * Phi_);
+  K.makeCompressed();
+  const bool same = k_outer_.size() == std::size_t(K.cols() + 1) &&
+                    std::equal(k_outer_.begin(), k_outer_.end(), K.outerIndexPtr()) &&
+                    k_inner_.size() == std::size_t(K.nonZeros()) &&
+                    std::equal(k_inner_.begin(), k_inner_.end(), K.innerIndexPtr());
+  if (!same) {
     ldlt_.analyzePattern(K);
-    analyzed_ = true;
+    k_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.cols() + 1);
+    k_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
   }
   ldlt_.factorize(K);
   ok_ = ldlt_.info() == Eigen::Success;
 }
 
-void AlSolver::factorizeAssembled(const SparseMatrixd& K, double alpha, bool same_pattern) {
-  alpha_ = alpha;
-  if (!same_pattern || !analyzed_) {
-    ldlt_.analyzePattern(K);
-    analyzed_ = true;
-  }
-  ldlt_.factorize(K);
-  ok_ = ldlt_.info() == Eigen::Success;
+VectorXd AlSolver::multiplyM(const VectorXd& x) const {
+  if (used_ == AlMethod::SparseLdlt && M_sparse_.rows() > 0) return M_sparse_ * x;
+  VectorXd y;
+  M_.multiply(x, y);
+  return y;
 }
 
-namespace {
+VectorXd AlSolver::solveS(const VectorXd& r) const {
+  return s_use_ldlt_ ? VectorXd(s_ldlt_.solve(r)) : VectorXd(s_llt_.solve(r));
+}
+
+VectorXd AlSolver::solve(const VectorXd& r) const {
+  if (used_ == AlMethod::SparseLdlt) return ldlt_.solve(r);
+  // x = L^-T (y - V z), y = L^-1 r, z = S^-1 Phi M^-1 r = S^-1 sum V^T y.
+  VectorXd x = r, u = VectorXd::Zero(Phi_.rows());
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockData& B = blocks_[b];
+    auto xb = x.segment(M_.offset[b], M_.block[b].rows());
+    B.llt.matrixL().solveInPlace(xb);
+    if (B.rows.empty()) continue;
+    const VectorXd pu = B.V.transpose() * xb;
+    for (std::size_t k = 0; k < B.rows.size(); ++k) u[B.rows[k]] += pu[k];
+  }
+  const VectorXd z = u.size() ? solveS(u) : u;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockData& B = blocks_[b];
+    auto xb = x.segment(M_.offset[b], M_.block[b].rows());
+    if (!B.rows.empty()) {
+      VectorXd zb(B.rows.size());
+      for (std::size_t k = 0; k < B.rows.size(); ++k) zb[k] = z[B.rows[k]];
+      xb.noalias() -= B.V * zb;
+    }
+    B.llt.matrixU().solveInPlace(xb);
+  }
+  return x;
+}
+
 // Multiplier iteration for  K x = b - Phi^T (mu + a g),  mu += a (Phi x + g),
 // K = M + a Phi^T Phi, converging to M x = b - Phi^T mu with Phi x + g = 0 (in
 // the least-squares sense if the equations are inconsistent). Written in
@@ -33,20 +203,21 @@ namespace {
 // pass also refines away the rounding of the solve: K is ill-conditioned by
 // design (a large, light bodies' small inertias), and solving for x afresh
 // would leave errors of eps cond(K) |x| in every acceleration.
-Eigen::VectorXd multiplierIteration(const Eigen::SimplicialLDLT<SparseMatrixd>& ldlt, const SparseMatrixd& M,
-                                    const SparseMatrixd& Phi, double a, const Eigen::VectorXd& b,
-                                    const Eigen::VectorXd& g, double tol, int max_it, bool stop_on_stall,
-                                    Eigen::VectorXd* mu_out, int* its, double* res) {
-  Eigen::VectorXd mu = Eigen::VectorXd::Zero(Phi.rows());
-  Eigen::VectorXd x = ldlt.solve(b - a * (Phi.transpose() * g));
-  Eigen::VectorXd e = Phi * x + g;
+VectorXd AlSolver::iterate(const VectorXd& b, const VectorXd& g, double tol, int max_it, bool stop_on_stall,
+                           VectorXd* mu_out, int* its, double* res) const {
+  if (used_ == AlMethod::BlockSchur) return iterateSchur(b, g, tol, max_it, stop_on_stall, mu_out, its, res);
+  const double a = alpha_;
+  const SparseMatrixd& Phi = Phi_;
+  VectorXd mu = VectorXd::Zero(Phi.rows());
+  VectorXd x = solve(b - a * (Phi.transpose() * g));
+  VectorXd e = Phi * x + g;
   double r = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
   int k = 0;
   double r_prev = std::numeric_limits<double>::infinity();
   while (k < max_it) {
     mu += a * e;
-    const Eigen::VectorXd rhs = b - M * x - Phi.transpose() * (mu + a * e);
-    const Eigen::VectorXd dx = ldlt.solve(rhs);
+    const VectorXd rhs = b - multiplyM(x) - Phi.transpose() * (mu + a * e);
+    const VectorXd dx = solve(rhs);
     x += dx;
     e = Phi * x + g;
     ++k;
@@ -75,31 +246,85 @@ Eigen::VectorXd multiplierIteration(const Eigen::SimplicialLDLT<SparseMatrixd>& 
   if (res) *res = r;
   return x;
 }
-}  // namespace
 
-AlResult AlSolver::accelerations(const SparseMatrixd& M, const SparseMatrixd& Phi_v,
-                                 const Eigen::VectorXd& Q, const Eigen::VectorXd& s, double tol,
-                                 int max_iterations) const {
+// The same iteration in multiplier space, for the block Schur path. With
+// S = I/a + Phi M^-1 Phi^T and c = Phi M^-1 b + g, pass k solves
+//   S lambda_k = c + mu_k / a,   mu_{k+1} = lambda_k,
+// which is the iteration above written for lambda_k = mu_k + a (Phi x_k + g),
+// the multipliers with M x_k = b - Phi^T lambda_k (Bayo & Ledesma's update).
+// A pass costs one m x m triangular pair and the bodies' small blocks, not
+// a solve with K; x is formed from lambda as M^-1 (b - Phi^T lambda), whose
+// rounding is eps |M^-1 b|, not eps cond(K) |x|, so it needs no refinement.
+VectorXd AlSolver::iterateSchur(const VectorXd& b, const VectorXd& g, double tol, int max_it, bool stop_on_stall,
+                                VectorXd* mu_out, int* its, double* res) const {
+  const double a = alpha_;
+  const int m = int(Phi_.rows());
+  VectorXd yl = b, c = g;  // yl = L^-1 b per block
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const BlockData& B = blocks_[k];
+    auto yb = yl.segment(M_.offset[k], M_.block[k].rows());
+    B.llt.matrixL().solveInPlace(yb);
+    if (B.rows.empty()) continue;
+    const VectorXd cb = B.V.transpose() * yb;
+    for (std::size_t i = 0; i < B.rows.size(); ++i) c[B.rows[i]] += cb[i];
+  }
+  VectorXd x(b.size()), zb;
+  auto accelerationsFor = [&](const VectorXd& lam) {
+    x = yl;
+    for (std::size_t k = 0; k < blocks_.size(); ++k) {
+      const BlockData& B = blocks_[k];
+      auto xb = x.segment(M_.offset[k], M_.block[k].rows());
+      if (!B.rows.empty()) {
+        zb.resize(B.rows.size());
+        for (std::size_t i = 0; i < B.rows.size(); ++i) zb[i] = lam[B.rows[i]];
+        xb.noalias() -= B.V * zb;
+      }
+      B.llt.matrixU().solveInPlace(xb);
+    }
+  };
+  VectorXd lam = m ? solveS(c) : VectorXd();
+  accelerationsFor(lam);
+  VectorXd e = Phi_ * x + g;
+  double r = m ? e.cwiseAbs().maxCoeff() : 0.0;
+  int k = 0;
+  double r_prev = std::numeric_limits<double>::infinity();
+  VectorXd x_prev;
+  while (k < max_it && m > 0) {
+    x_prev = x;
+    lam = solveS(c + lam / a);
+    accelerationsFor(lam);
+    e = Phi_ * x + g;
+    ++k;
+    r = e.cwiseAbs().maxCoeff();
+    const double d = (x - x_prev).lpNorm<Eigen::Infinity>();
+    const double xn = x.lpNorm<Eigen::Infinity>();
+    // Stopping rules as in iterate() (and for the same reasons).
+    if (r <= tol && d <= 1e-13 * xn) break;
+    if (d <= 1e-13 * xn) break;
+    if (stop_on_stall && r > 0.5 * r_prev) break;
+    r_prev = r;
+  }
+  if (mu_out) *mu_out = lam;
+  if (its) *its = k;
+  if (res) *res = r;
+  return x;
+}
+
+AlResult AlSolver::accelerations(const VectorXd& Q, const VectorXd& s, double tol, int max_iterations) const {
   AlResult r;
-  r.vdot = multiplierIteration(ldlt_, M, Phi_v, alpha_, Q, s, tol, max_iterations, false, &r.lambda,
-                               &r.iterations, &r.residual);
+  r.vdot = iterate(Q, s, tol, max_iterations, false, &r.lambda, &r.iterations, &r.residual);
   return r;
 }
 
-Eigen::VectorXd AlSolver::projectVelocities(const SparseMatrixd& M, const SparseMatrixd& Phi_v,
-                                            const Eigen::VectorXd& v0, const Eigen::VectorXd& phit,
-                                            double tol, int max_iterations) const {
-  return multiplierIteration(ldlt_, M, Phi_v, alpha_, M * v0, phit, tol, max_iterations, true, nullptr,
-                             nullptr, nullptr);
+VectorXd AlSolver::projectVelocities(const VectorXd& v0, const VectorXd& phit, double tol,
+                                     int max_iterations) const {
+  return iterate(multiplyM(v0), phit, tol, max_iterations, true, nullptr, nullptr, nullptr);
 }
 
-Eigen::VectorXd AlSolver::positionCorrection(const SparseMatrixd& M, const SparseMatrixd& Phi_v,
-                                             const Eigen::VectorXd& phi,
-                                             const Eigen::VectorXd& accumulated, double tol,
-                                             int max_iterations) const {
+VectorXd AlSolver::positionCorrection(const VectorXd& phi, const VectorXd& accumulated, double tol,
+                                      int max_iterations) const {
   // Unknown dq; constraint Phi_v dq + phi = 0; objective (d + dq)^T M (d + dq).
-  return multiplierIteration(ldlt_, M, Phi_v, alpha_, -(M * accumulated), phi, tol, max_iterations, true,
-                             nullptr, nullptr, nullptr);
+  return iterate(-multiplyM(accumulated), phi, tol, max_iterations, true, nullptr, nullptr, nullptr);
 }
 
 }  // namespace fc::mbs

@@ -128,13 +128,16 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
 }
 
 void System::assembleMass(const std::vector<BodyPose>& P) {
-  std::vector<Eigen::Triplet<double>>& trip_ = mass_trip_;
-  trip_.clear();
   Qv_.setZero(model_.nv);
+  mass_.size = model_.nv;
+  mass_.offset.clear();
+  std::size_t nb = 0;
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed) continue;
-    Eigen::MatrixXd Mb;
+    if (mass_.block.size() <= nb) mass_.block.emplace_back();
+    mass_.offset.push_back(b.dof_index);
+    Eigen::MatrixXd& Mb = mass_.block[nb++];
     if (b.flex) {
       // Floating frame of reference: inertia from the body file's invariants
       // (mbs-run/flexible, shared conventions of the flexible-body kernel).
@@ -145,60 +148,12 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
       Mb = rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A);
       Qv_.segment<6>(b.dof_index) = rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P[k].A, P[k].w);
     }
-    // All entries, even zeros, so that the sparsity pattern never changes.
-    for (int r = 0; r < b.nv(); ++r)
-      for (int c = 0; c < b.nv(); ++c) trip_.emplace_back(b.dof_index + r, b.dof_index + c, Mb(r, c));
   }
-  M_.resize(model_.nv, model_.nv);
-  M_.setFromTriplets(trip_.begin(), trip_.end());
+  mass_.block.resize(nb);
 }
 
 void System::factorize() {
-  // K = M + a Phi_v^T Phi_v assembled from the joints' dense blocks: each joint
-  // adds a Ji^T Ji, a Ji^T Jj, a Jj^T Ji, a Jj^T Jj to its bodies' blocks. The
-  // entries are visited in a fixed order; while the pattern (active joints and
-  // their row counts) is unchanged they are added straight into K's value array
-  // at slots found once, and the symbolic analysis is kept.
-  const double a = penalty();
-  long sig = Phi_v_.rows();
-  for (const ConstraintRows& rows : joint_rows_) sig = sig * 31 + rows.size();
-  const bool same = sig == pattern_signature_ && K_.nonZeros() > 0;
-  pattern_signature_ = sig;
-
-  std::vector<Eigen::Triplet<double>> kt;
-  std::size_t slot = 0;
-  if (same) K_.coeffs().setZero();
-  auto emit = [&](int r, int c, double v) {
-    if (same) K_.valuePtr()[k_slots_[slot++]] += v;
-    else kt.emplace_back(r, c, v);
-  };
-  for (const auto& t : mass_trip_) emit(t.row(), t.col(), t.value());
-  auto block = [&](int ri, int ci, const Eigen::MatrixXd& B) {
-    for (Eigen::Index c = 0; c < B.cols(); ++c)
-      for (Eigen::Index r = 0; r < B.rows(); ++r) emit(ri + int(r), ci + int(c), a * B(r, c));
-  };
-  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
-    const ConstraintRows& rows = joint_rows_[j];
-    if (rows.size() == 0) continue;
-    const Joint& jt = model_.joints[j];
-    const Body &bi = model_.bodies[jt.body_i], &bj = model_.bodies[jt.body_j];
-    if (!bi.fixed) block(bi.dof_index, bi.dof_index, rows.Ji.transpose() * rows.Ji);
-    if (!bj.fixed) block(bj.dof_index, bj.dof_index, rows.Jj.transpose() * rows.Jj);
-    if (!bi.fixed && !bj.fixed) {
-      const Eigen::MatrixXd C = rows.Ji.transpose() * rows.Jj;
-      block(bi.dof_index, bj.dof_index, C);
-      block(bj.dof_index, bi.dof_index, C.transpose());
-    }
-  }
-  if (!same) {
-    K_.resize(model_.nv, model_.nv);
-    K_.setFromTriplets(kt.begin(), kt.end());
-    K_.makeCompressed();
-    k_slots_.resize(kt.size());
-    for (std::size_t k = 0; k < kt.size(); ++k)
-      k_slots_[k] = &K_.coeffRef(kt[k].row(), kt[k].col()) - K_.valuePtr();
-  }
-  solver_.factorizeAssembled(K_, a, same);
+  solver_.factorize(mass_, Phi_v_, penalty());
   if (!solver_.ok())
     throw std::runtime_error("the augmented matrix M + a Phi^T Phi could not be factorised "
                              "(a mass matrix not positive definite, or non-finite state)");
@@ -298,7 +253,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
   const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
-  const AlResult r = solver_.accelerations(M_, Phi_v_, Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
+  const AlResult r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
                                                 model_.settings.multiplier_iterations);
   lambda_ = r.lambda;
   stats_.al_iterations += r.iterations;
@@ -327,6 +282,16 @@ double System::constraintViolation(double t, const VectorXd& y) {
   return phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
 }
 
+System::Violations System::violations(double t, const VectorXd& y) {
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  Violations v;
+  if (phi_.size() == 0) return v;
+  v.position = phi_.cwiseAbs().maxCoeff();
+  v.velocity = (Phi_v_ * y.segment(model_.nq, model_.nv) + phit_).cwiseAbs().maxCoeff();
+  return v;
+}
+
 double System::project(double t, VectorXd& y) {
   const int nq = model_.nq, nv = model_.nv;
   double scale = 1.0;
@@ -341,7 +306,7 @@ double System::project(double t, VectorXd& y) {
     if (viol <= tol) break;
     assembleMass(P_);
     factorize();
-    const VectorXd dq = solver_.positionCorrection(M_, Phi_v_, phi_, accumulated, 1e-3 * tol, 20);
+    const VectorXd dq = solver_.positionCorrection(phi_, accumulated, 1e-3 * tol, 20);
     accumulated += dq;
     for (const Body& b : model_.bodies) {
       if (b.fixed) continue;
@@ -364,7 +329,7 @@ double System::project(double t, VectorXd& y) {
     assembleMass(P_);
     factorize();
     const VectorXd v0 = y.segment(nq, nv);
-    y.segment(nq, nv) = solver_.projectVelocities(M_, Phi_v_, v0, phit_, 1e-13 * (1.0 + v0.lpNorm<Eigen::Infinity>()), 20);
+    y.segment(nq, nv) = solver_.projectVelocities(v0, phit_, 1e-13 * (1.0 + v0.lpNorm<Eigen::Infinity>()), 20);
   }
   return viol;
 }

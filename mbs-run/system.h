@@ -51,6 +51,11 @@ class System {
   double project(double t, Eigen::VectorXd& y);
   // Largest |Phi| over the active constraints.
   double constraintViolation(double t, const Eigen::VectorXd& y);
+  // Largest |Phi| and largest |Phi_v v + Phi_t| (velocity level).
+  struct Violations {
+    double position = 0.0, velocity = 0.0;
+  };
+  Violations violations(double t, const Eigen::VectorXd& y);
 
   Energies energies(double t, const Eigen::VectorXd& y) const;
   // Reaction force on the first body of each joint (global); zero if disabled.
@@ -87,14 +92,12 @@ class System {
   std::vector<int> row_of_joint_;
   // Workspace.
   std::vector<BodyPose> P_;
-  SparseMatrixd M_, Phi_v_, K_;
-  std::vector<Eigen::Triplet<double>> mass_trip_;
+  BlockDiagonal mass_;  // one dense block per free body
+  SparseMatrixd Phi_v_;
   std::vector<ConstraintRows> joint_rows_;  // rows of each joint, from the last assembly
-  std::vector<Eigen::Index> k_slots_;       // value index in K_ of each assembled entry
   Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;
   std::vector<Eigen::Triplet<double>> trip_;
   AlSolver solver_;
-  long pattern_signature_ = -1;
   EvalStats stats_;
 };
 

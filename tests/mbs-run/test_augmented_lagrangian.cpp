@@ -67,12 +67,14 @@ Eigen::VectorXd exactSolution(const Case& c) {
   return K.fullPivLu().solve(b).head(n);
 }
 
-void check(const Case& c, double penalty, const char* label) {
+void check(const Case& c, double penalty, const char* label, AlMethod method) {
   const SparseMatrixd M = c.M.sparseView(), Phi = c.Phi.sparseView();
   AlSolver solver;
-  solver.factorize(M, Phi, penalty, false);
+  solver.setMethod(method);
+  solver.factorize(M, Phi, penalty);
   ASSERT_TRUE(solver.ok());
-  const AlResult r = solver.accelerations(M, Phi, c.Q, c.s, 1e-12, 50);
+  ASSERT_EQ(solver.methodUsed(), method);
+  const AlResult r = solver.accelerations(c.Q, c.s, 1e-12, 50);
   const Eigen::VectorXd x = exactSolution(c);
   const double err = (r.vdot - x).norm() / x.norm();
   std::printf("[   info   ] %s: relative error %.2e after %d iterations, residual %.2e\n", label, err,
@@ -91,26 +93,91 @@ void check(const Case& c, double penalty, const char* label) {
   EXPECT_LT(force_res, bound);
 }
 
-TEST(AugmentedLagrangian, MatchesKktSolution) {
-  check(makeCase(12, 5, false, 1.0, 1), 1e6, "independent rows");
+// Both ways of applying (M + a Phi^T Phi)^-1 (block Schur complement and
+// sparse LDL^T) must give the same constrained solution.
+class AugmentedLagrangian : public ::testing::TestWithParam<AlMethod> {};
+
+TEST_P(AugmentedLagrangian, MatchesKktSolution) {
+  check(makeCase(12, 5, false, 1.0, 1), 1e6, "independent rows", GetParam());
 }
-TEST(AugmentedLagrangian, RedundantRowsDoNotMatter) {
-  check(makeCase(12, 7, true, 1.0, 2), 1e6, "redundant rows");
+TEST_P(AugmentedLagrangian, RedundantRowsDoNotMatter) {
+  check(makeCase(12, 7, true, 1.0, 2), 1e6, "redundant rows", GetParam());
 }
-TEST(AugmentedLagrangian, BadlyScaledMasses) {
+TEST_P(AugmentedLagrangian, BadlyScaledMasses) {
   // Six decades between the heaviest and lightest directions, like a panel
   // and the axial inertia of a thin truss.
-  check(makeCase(12, 7, true, 6.0, 3), 1e6, "mass spread 1e6");
+  check(makeCase(12, 7, true, 6.0, 3), 1e6, "mass spread 1e6", GetParam());
 }
 
-TEST(AugmentedLagrangian, VelocityProjectionIsMassOrthogonal) {
+// A body-ordered block-diagonal M (three bodies of 6, 8 and 4 coordinates)
+// with constraint rows each touching one or two bodies, as the engine builds
+// it: the Schur path works block by block and must still match the KKT
+// solution, redundant rows and a wide mass spread included.
+TEST_P(AugmentedLagrangian, BlockDiagonalMassAsBodiesGiveIt) {
+  Case c = makeCase(18, 9, true, 5.0, 7);
+  const int off[4] = {0, 6, 14, 18};
+  Eigen::MatrixXd Mb = Eigen::MatrixXd::Zero(18, 18);
+  for (int b = 0; b < 3; ++b) {
+    const int n = off[b + 1] - off[b];
+    Mb.block(off[b], off[b], n, n) = c.M.block(off[b], off[b], n, n);
+  }
+  c.M = Mb;  // principal blocks of an SPD matrix are SPD
+  for (int i = 0; i < c.Phi.rows(); ++i) {
+    const int keep = i % 3;  // rows touch bodies {keep, keep+1 mod 3}
+    for (int b = 0; b < 3; ++b)
+      if (b != keep && b != (keep + 1) % 3) c.Phi.block(i, off[b], 1, off[b + 1] - off[b]).setZero();
+  }
+  c.Phi.row(c.Phi.rows() - 1) = c.Phi.row(0);  // keep one exact duplicate
+  c.s[c.Phi.rows() - 1] = c.s[0];
+  c.Phi.row(c.Phi.rows() - 2).setZero();
+  c.s[c.Phi.rows() - 2] = 0.0;
+  const BlockDiagonal D = BlockDiagonal::fromSparse(c.M.sparseView());
+  ASSERT_EQ(D.block.size(), 3u);
+  EXPECT_EQ(D.offset[1], 6);
+  EXPECT_EQ(D.offset[2], 14);
+  check(c, 1e6, "block-diagonal M", GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, AugmentedLagrangian,
+                         ::testing::Values(AlMethod::BlockSchur, AlMethod::SparseLdlt),
+                         [](const ::testing::TestParamInfo<AlMethod>& i) {
+                           return i.param == AlMethod::BlockSchur ? "BlockSchur" : "SparseLdlt";
+                         });
+
+// A body whose own mass block is singular (a point mass carried by
+// rotational coordinates it does not have) still gives a definite K when the
+// constraints hold the missing directions: the Schur path cannot invert that
+// block, so the automatic choice must fall back to the sparse LDL^T.
+TEST(AugmentedLagrangianFallback, SingularBodyBlockFallsBackToSparse) {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(4, 4);
+  M(3, 3) = 0.0;  // no inertia in coordinate 3
+  Eigen::MatrixXd Phi(1, 4);
+  Phi << 0, 0, 1, 1;  // coordinate 3 tied to coordinate 2
+  AlSolver solver;
+  solver.factorize(SparseMatrixd(M.sparseView()), SparseMatrixd(Phi.sparseView()), 1e6);
+  ASSERT_TRUE(solver.ok());
+  EXPECT_EQ(solver.methodUsed(), AlMethod::SparseLdlt);
+  Eigen::VectorXd Q(4), s(1);
+  Q << 1, 2, 3, 0;
+  s << 0.0;
+  const AlResult r = solver.accelerations(Q, s, 1e-12, 50);
+  // Exact: x2 = Q2 - lambda and 0 * x3 = Q3 - lambda give lambda = 0, so
+  // x2 = 3 and, from x2 + x3 = 0, x3 = -3. 1e-6: the massless coordinate is
+  // fixed by the penalty alone, to about |x| / a per multiplier pass.
+  EXPECT_NEAR(r.vdot[0], 1.0, 1e-9);
+  EXPECT_NEAR(r.vdot[1], 2.0, 1e-9);
+  EXPECT_NEAR(r.vdot[2], 3.0, 1e-6);
+  EXPECT_NEAR(r.vdot[3], -3.0, 1e-6);
+}
+
+TEST(AugmentedLagrangianProjection, VelocityProjectionIsMassOrthogonal) {
   const Case c = makeCase(10, 4, true, 2.0, 4);
   const SparseMatrixd M = c.M.sparseView(), Phi = c.Phi.sparseView();
   AlSolver solver;
-  solver.factorize(M, Phi, 1e6, false);
+  solver.factorize(M, Phi, 1e6);
   Eigen::VectorXd v0 = c.Q;
   const Eigen::VectorXd phit = Eigen::VectorXd::Zero(c.Phi.rows());
-  const Eigen::VectorXd v = solver.projectVelocities(M, Phi, v0, phit, 1e-13, 50);
+  const Eigen::VectorXd v = solver.projectVelocities(v0, phit, 1e-13, 50);
   EXPECT_LT((c.Phi * v).norm(), 1e-11);
   // Mass-orthogonality: M (v - v0) lies in the range of Phi^T, so it is
   // M-orthogonal to every admissible velocity (null space of Phi).
