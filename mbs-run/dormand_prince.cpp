@@ -9,6 +9,7 @@ namespace {
 
 using Eigen::VectorXd;
 
+constexpr double kBeta = 0.08;
 constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
 constexpr double a21 = 1.0 / 5;
 constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
@@ -39,6 +40,15 @@ class DormandPrince final : public Integrator {
     have_dense_ = false;
   }
 
+  // Keeps h_ and the PI controller's memory: resetting fac_old_ after every
+  // projection made the controller act as an elementary one, shrinking the
+  // steps by ~30 % where stability limits them.
+  void restart(double t, const VectorXd& y) override {
+    t_ = t;
+    y_ = y;
+    f_(t_, y_, k1_);
+  }
+
   bool step(double t_limit) override {
     const double span = t_limit - t_;
     if (span <= 0.0) return false;
@@ -67,11 +77,15 @@ class DormandPrince final : public Integrator {
         continue;
       }
       // PI step-size control (Hairer's DOPRI5: beta = 0.04, safety 0.9).
-      const double fac11 = std::pow(std::max(err, 1e-16), 0.2 - 0.04 * 0.75);
-      double fac = fac11 / std::pow(fac_old_, 0.04);
+      const double fac11 = std::pow(std::max(err, 1e-16), 0.2 - kBeta * 0.75);
+      double fac = fac11 / std::pow(fac_old_, kBeta);
       fac = std::clamp(fac / 0.9, 0.1, 5.0);  // 1/fac: shrink to 1/5, grow at most 10x
-      const double hnew = h / fac;
+      double hnew = h / fac;
       if (err <= 1.0) {
+        // As DOPRI5: no growth right after a rejection, which otherwise
+        // oscillates across the stability boundary, rejecting every few steps.
+        if (last_rejected_) hnew = std::min(hnew, h);
+        last_rejected_ = false;
         fac_old_ = std::max(err, 1e-4);
         // Dense output over [t, t + h] (Hairer's contd5).
         rc1_ = y0;
@@ -92,6 +106,7 @@ class DormandPrince final : public Integrator {
         return true;
       }
       ++rejected;
+      last_rejected_ = true;
       h_ = h / std::min(10.0, fac11 / 0.9);
     }
   }
@@ -133,6 +148,7 @@ class DormandPrince final : public Integrator {
   VectorXd y_, y1_, ytmp_, k1_, k2_, k3_, k4_, k5_, k6_, k7_, err_;
   VectorXd rc1_, rc2_, rc3_, rc4_, rc5_;
   bool have_dense_ = false;
+  bool last_rejected_ = false;
 };
 
 }  // namespace

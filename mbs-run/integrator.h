@@ -31,8 +31,12 @@ double weightedRmsNorm(const Eigen::VectorXd& e, const Eigen::VectorXd& y0, cons
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  // (Re)starts at (t, y): after events and projections the history is invalid.
+  // (Re)starts at (t, y): after events the history is invalid.
   virtual void reset(double t, const Eigen::VectorXd& y) = 0;
+  // Continues from (t, y), a state the caller nudged (a projection onto the
+  // constraints) after the last accepted step: the derivative is renewed, the
+  // step-size history kept, since the dynamics did not change.
+  virtual void restart(double t, const Eigen::VectorXd& y) { reset(t, y); }
   // One accepted step, never past t_limit. False when the step size underflows.
   virtual bool step(double t_limit) = 0;
   virtual double t() const = 0;
