@@ -101,7 +101,21 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
   phi_.setZero(m);
   phit_.setZero(m);
   c_.setZero(m);
+  // While the active joints and their row counts are unchanged, Phi_v's
+  // pattern is too: its values are written straight into the slots found
+  // when the pattern was built (setFromTriplets cost ~10 % of a SAR step).
+  long sig = m;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j)
+    sig = sig * 31 + (joints_[j].enabled ? constraintCount(model_.joints[j], joints_[j]) + 1 : 0);
+  const bool same = sig == phi_signature_ && Phi_v_.nonZeros() > 0;
+  phi_signature_ = sig;
   trip_.clear();
+  std::size_t slot = 0;
+  double* values = Phi_v_.valuePtr();
+  auto emit = [&](int r, int c, double v) {
+    if (same) values[phi_slots_[slot++]] = v;
+    else trip_.emplace_back(r, c, v);
+  };
   joint_rows_.resize(model_.joints.size());
   for (std::size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];
@@ -118,13 +132,20 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
     const Body &bi = model_.bodies[jt.body_i], &bj = model_.bodies[jt.body_j];
     for (int r = 0; r < rows.size(); ++r) {
       if (!bi.fixed)
-        for (int k = 0; k < bi.nv(); ++k) trip_.emplace_back(r0 + r, bi.dof_index + k, rows.Ji(r, k));
+        for (int k = 0; k < bi.nv(); ++k) emit(r0 + r, bi.dof_index + k, rows.Ji(r, k));
       if (!bj.fixed)
-        for (int k = 0; k < bj.nv(); ++k) trip_.emplace_back(r0 + r, bj.dof_index + k, rows.Jj(r, k));
+        for (int k = 0; k < bj.nv(); ++k) emit(r0 + r, bj.dof_index + k, rows.Jj(r, k));
     }
   }
+  if (same) return;
+  // Entries are never summed: a joint's two bodies are distinct, and each
+  // (row, column) is emitted once, so every triplet has a slot of its own.
   Phi_v_.resize(m, model_.nv);
   Phi_v_.setFromTriplets(trip_.begin(), trip_.end());
+  Phi_v_.makeCompressed();
+  phi_slots_.resize(trip_.size());
+  for (std::size_t k = 0; k < trip_.size(); ++k)
+    phi_slots_[k] = &Phi_v_.coeffRef(trip_[k].row(), trip_[k].col()) - Phi_v_.valuePtr();
 }
 
 void System::assembleMass(const std::vector<BodyPose>& P) {

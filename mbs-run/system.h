@@ -97,6 +97,8 @@ class System {
   std::vector<ConstraintRows> joint_rows_;  // rows of each joint, from the last assembly
   Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;
   std::vector<Eigen::Triplet<double>> trip_;
+  long phi_signature_ = -1;
+  std::vector<Eigen::Index> phi_slots_;  // value index in Phi_v_ of each emitted entry
   AlSolver solver_;
   EvalStats stats_;
 };
