@@ -46,8 +46,10 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std:
   std::printf("  model: %zu bodies (%d fixed, %d flexible with %d modes in all), %d position / %d velocity "
               "coordinates, %zu joints with %d constraint equations at t = 0\n",
               m.bodies.size(), n_fixed, n_flexible, n_modes, m.nq, m.nv, m.joints.size(), n_rows);
-  std::printf("  integrator %s, rtol %.3g: %ld steps, %ld rejected, %ld evaluations, AL iterations <= %d\n",
-              r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.max_al_iterations);
+  std::printf("  integrator %s, rtol %.3g: %ld steps, %ld rejected, %ld evaluations, %ld projections, "
+              "AL iterations <= %d\n",
+              r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.projections,
+              r.max_al_iterations);
   std::printf("  CPU %.3f s, real-time factor %.3g (simulated s per CPU s)\n", r.cpu_seconds,
               r.cpu_seconds > 0 ? t / r.cpu_seconds : 0.0);
   std::printf("  largest constraint violation %.3e\n", r.max_violation);

@@ -207,7 +207,10 @@ Results simulate(const Model& model, const RunOptions& options) {
     // by changing y, the first stage the next step would reuse (FSAL).
     const System::Violations viol = sys.violations(t, y);
     const bool project = hit || viol.position > projection_tol || viol.velocity > projection_tol;
-    if (project) sys.project(t, y);
+    if (project) {
+      sys.project(t, y);
+      ++R.projections;
+    }
     if (hit) {
       applyEvent(sys, *hit, y);
       R.event_log.push_back(timeLabel(t) + " joint " + model.joints[hit->joint].name +

@@ -29,6 +29,7 @@ struct Results {
   std::string status = "completed";
   std::string integrator;
   long steps = 0, rejected_steps = 0, evaluations = 0;
+  long projections = 0;  // steps after which the drift exceeded atol/10 and was projected away
   double cpu_seconds = 0.0, t_reached = 0.0;
   double max_violation = 0.0;        // over the output samples
   double energy_balance_error = 0.0; // max |T + V + D - W - E_ref| per event-free segment
