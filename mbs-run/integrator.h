@@ -45,6 +45,10 @@ class Integrator {
   // Continuous extension over the last accepted step [tPrevious, t].
   virtual Eigen::VectorXd interpolate(double t) const = 0;
   virtual std::string name() const = 0;
+  // An estimate of the eigenvalue |lambda| (1/s) that holds the step at the
+  // method's stability boundary, once that has persisted for several steps;
+  // 0 otherwise (and for methods with no such boundary).
+  virtual double stiffness() const { return 0.0; }
   long steps = 0, rejected = 0;
 };
 

@@ -56,6 +56,7 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std:
   std::printf("  energy balance error %.3e J (%.3e of the largest energy term %.3e J)\n", r.energy_balance_error,
               r.energy_scale > 0 ? r.energy_balance_error / r.energy_scale : 0.0, r.energy_scale);
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
+  for (const std::string& e : r.integrator_log) std::printf("  integrator %s\n", e.c_str());
 }
 
 }  // namespace
@@ -88,6 +89,10 @@ int main(int argc, char** argv) {
     if (integrator == "dopri5") model.settings.integrator = fc::mbs::IntegratorKind::DormandPrince;
     if (integrator == "trbdf2") model.settings.integrator = fc::mbs::IntegratorKind::Bdf;
     if (integrator == "auto") model.settings.integrator = fc::mbs::chooseIntegrator(model);
+    // A named method is used throughout; auto may switch (Settings::switch_when_stiff).
+    if (!integrator.empty())
+      model.settings.switch_when_stiff =
+          integrator == "auto" && model.settings.integrator == fc::mbs::IntegratorKind::DormandPrince;
     std::vector<std::string> chosen = splitComma(channels);
     if (chosen.empty()) {
       for (const auto& j : model.joints)

@@ -122,6 +122,13 @@ struct Settings {
   double rtol = 1e-6;
   double atol = -1.0;            // < 0: rtol * 1e-3 (positions in m, angles in rad, ~1)
   IntegratorKind integrator = IntegratorKind::Auto;
+  // Set when `integrator: auto` chose dopri5: the run switches to TR-BDF2 for
+  // the rest of an event-free segment once Dormand-Prince's stiffness test
+  // (Hairer's) finds it held at its stability boundary with steps below
+  // 3.25 / stiff_frequency (1.6 ms): TR-BDF2's accuracy-bound steps on the
+  // flexible SAR are ~2 ms at rtol 1e-4, so below that it wins.
+  bool switch_when_stiff = false;
+  double stiff_frequency = 2000.0;
   double max_step = -1.0;        // < 0: 10 output steps
   // Augmented Lagrangian (Bayo & Ledesma 1996): penalty scale relative to the
   // largest free-body mass or inertia (1e6: see docs/mbs-run.md, larger values

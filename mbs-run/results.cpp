@@ -85,6 +85,9 @@ void writeResults(const std::string& path, const Model& model, const Results& r,
   std::string log;
   for (const std::string& e : r.event_log) log += e + "\n";
   f.setAttribute("/", "events", log);
+  std::string switches;
+  for (const std::string& e : r.integrator_log) switches += e + "\n";
+  f.setAttribute("/", "integrator_switches", switches);
   w.commit();
 }
 

@@ -430,7 +430,10 @@ Model parseScene(const InputNode& root) {
   });
   forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
   parseSimulation(root["simulation"], m.settings);
-  if (m.settings.integrator == IntegratorKind::Auto) m.settings.integrator = chooseIntegrator(m);
+  if (m.settings.integrator == IntegratorKind::Auto) {
+    m.settings.integrator = chooseIntegrator(m);
+    m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
+  }
   return m;
 }
 
@@ -463,9 +466,9 @@ IntegratorKind chooseIntegrator(const Model& m) {
     }
   }
   // Modal frequencies are deliberately not counted: joints often clamp the
-  // stiffest modes (the SAR crank's 1 kHz modes with R1 locked), and where
-  // they do not, modal damping or a user's `integrator: trbdf2` decides. On
-  // the flexible SAR antenna Dormand-Prince was 4-7x faster than TR-BDF2.
+  // stiffest modes (the SAR crank's 1 kHz modes with R1 locked), so which
+  // modes are stiff is known only from the constrained motion; the run
+  // measures it (Settings::switch_when_stiff, simulation.cpp).
   return wmax > 2000.0 ? IntegratorKind::Bdf : IntegratorKind::DormandPrince;
 }
 

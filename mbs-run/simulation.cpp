@@ -113,9 +113,28 @@ Results simulate(const Model& model, const RunOptions& options) {
   tol.mask = VectorXd::Ones(sys.size());
   tol.mask.tail(2).setZero();  // energy quadratures are diagnostics, not controlled
   Rhs f = [&sys](double t, const VectorXd& yy, VectorXd& yd) { sys.derivative(t, yy, yd); };
-  std::unique_ptr<Integrator> integ =
-      st.integrator == IntegratorKind::Bdf ? makeTrBdf2(f, tol) : makeDormandPrince(f, tol);
+  // With `integrator: auto` a segment between events starts with
+  // Dormand-Prince and moves to TR-BDF2 if a stiff eigenvalue (a fast mode
+  // the joints do not clamp, such as the SAR crank's 1 kHz modes once R1 is
+  // released) holds the explicit steps at the stability boundary; an event
+  // changes the dynamics, so the next segment starts explicit again.
+  std::unique_ptr<Integrator> explicit_method, implicit_method;
+  Integrator* integ = nullptr;
+  if (st.integrator == IntegratorKind::Bdf) {
+    implicit_method = makeTrBdf2(f, tol);
+    integ = implicit_method.get();
+  } else {
+    explicit_method = makeDormandPrince(f, tol);
+    integ = explicit_method.get();
+  }
   R.integrator = integ->name();
+  auto useExplicitAgain = [&](double t_now, const VectorXd& y_now) {
+    if (!st.switch_when_stiff || integ == explicit_method.get()) return false;
+    integ = explicit_method.get();
+    integ->reset(t_now, y_now);
+    R.integrator_log.push_back(timeLabel(t_now) + " dopri5 (event)");
+    return true;
+  };
   const double projection_tol = 0.1 * tol.atol;
   integ->reset(0.0, y);
 
@@ -150,7 +169,7 @@ Results simulate(const Model& model, const RunOptions& options) {
       R.event_log.push_back(timeLabel(t) + describe(model, *timed[next_timed]));
       ++next_timed;
       sys.project(t, y);
-      integ->reset(t, y);
+      if (!useExplicitAgain(t, y)) integ->reset(t, y);
       e_ref = sys.energies(t, y).total();
     }
     const double t_limit = next_timed < timed.size() ? std::min(t_end, timed[next_timed]->time) : t_end;
@@ -218,8 +237,21 @@ Results simulate(const Model& model, const RunOptions& options) {
       sys.project(t, y);
     }
     const bool at_time_event = next_timed < timed.size() && t >= timed[next_timed]->time;
-    if (hit) integ->reset(t, y);
-    else if (project) integ->restart(t, y);
+    const double lambda = integ->stiffness();
+    if (hit) {
+      if (!useExplicitAgain(t, y)) integ->reset(t, y);
+    } else if (st.switch_when_stiff && lambda > st.stiff_frequency && integ == explicit_method.get()) {
+      if (!implicit_method) implicit_method = makeTrBdf2(f, tol);
+      integ = implicit_method.get();
+      integ->reset(t, y);
+      char buf[96];
+      std::snprintf(buf, sizeof buf, " trbdf2 (dopri5 held at its stability boundary by |lambda| ~ %.3g rad/s)",
+                    lambda);
+      R.integrator_log.push_back(timeLabel(t) + buf);
+      R.integrator = "dopri5+trbdf2";
+    } else if (project) {
+      integ->restart(t, y);
+    }
     if (hit || at_time_event) e_ref = sys.energies(t, y).total();
     progress.update(t, "steps " + std::to_string(integ->steps));
   }
@@ -230,8 +262,11 @@ Results simulate(const Model& model, const RunOptions& options) {
   }
   progress.finish();
   R.t_reached = t;
-  R.steps = integ->steps;
-  R.rejected_steps = integ->rejected;
+  for (const auto* m : {explicit_method.get(), implicit_method.get()})
+    if (m) {
+      R.steps += m->steps;
+      R.rejected_steps += m->rejected;
+    }
   R.evaluations = sys.stats().evaluations;
   R.max_al_iterations = sys.stats().max_al_iterations;
   R.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;

@@ -25,6 +25,7 @@ struct Results {
   std::vector<std::vector<Eigen::Vector3d>> reaction;          // [joint][row]
   std::vector<double> kinetic, potential, strain, dissipated, applied_work, violation;
   std::vector<std::string> event_log;                          // "t=...: what"
+  std::vector<std::string> integrator_log;                     // "t=...: method (why)", automatic switches
 
   std::string status = "completed";
   std::string integrator;

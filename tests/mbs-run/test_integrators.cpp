@@ -63,6 +63,32 @@ TEST(DormandPrince, ErrorFollowsTolerance) {
   EXPECT_LT(dense9, 1e-8);
 }
 
+// Hairer's stiffness test: on Prothero-Robinson with L = -1e4 the
+// explicit steps settle at the real stability boundary of DOPRI5 (|h L| ~
+// 3.3), so the eigenvalue implied by the step, 3.25 / h, is L to within the
+// controller's wandering about the boundary; on the mildly damped oscillator
+// (|lambda| = 2, accuracy-bound steps) nothing is reported.
+TEST(DormandPrince, ReportsTheStiffnessThatHoldsItsSteps) {
+  constexpr double L = -1e4;
+  Rhs pr = [](double t, const VectorXd& y, VectorXd& d) {
+    d.resize(1);
+    d[0] = L * (y[0] - std::sin(t)) + std::cos(t);
+  };
+  Tolerances tol;
+  tol.rtol = tol.atol = 1e-6;
+  auto I = makeDormandPrince(pr, tol);
+  I->reset(0.0, VectorXd::Zero(1));
+  while (I->t() < 0.05) ASSERT_TRUE(I->step(0.05));
+  std::printf("[   info   ] stiff: %ld steps, reported |lambda| %.3g (exact 1e4)\n", I->steps, I->stiffness());
+  EXPECT_GT(I->stiffness(), 0.5e4);
+  EXPECT_LT(I->stiffness(), 2e4);
+
+  auto J = makeDormandPrince(oscillator, tol);
+  J->reset(0.0, exactOscillator(0.0));
+  while (J->t() < 10.0) ASSERT_TRUE(J->step(10.0));
+  EXPECT_EQ(J->stiffness(), 0.0);
+}
+
 TEST(TrBdf2, StiffProtheroRobinson) {
   const double L = -1e6;
   Rhs f = [L](double t, const VectorXd& y, VectorXd& d) {
