@@ -29,12 +29,16 @@ simulation: )" + simulation + "\n";
 }
 
 TEST(Presets, FillDefaultsAndExplicitKeysWin) {
+  // fast: auto, which picks dopri5 for this soft scene and may switch to
+  // TR-BDF2 where the run proves stiff; accurate: dopri5 throughout.
   Settings s = sceneFromText(pendulum("{t_end: 1, preset: fast}")).settings;
   EXPECT_EQ(s.rtol, 1e-4);
   EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
+  EXPECT_TRUE(s.switch_when_stiff);
   s = sceneFromText(pendulum("{t_end: 1, preset: accurate}")).settings;
   EXPECT_EQ(s.rtol, 1e-7);
   EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
+  EXPECT_FALSE(s.switch_when_stiff);
   // Order in the map does not matter: explicit keys override the preset.
   s = sceneFromText(pendulum("{rtol: 1.0e-5, t_end: 1, preset: fast}")).settings;
   EXPECT_EQ(s.rtol, 1e-5);
