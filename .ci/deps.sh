@@ -4,7 +4,7 @@ set -euo pipefail
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 PKGS=(cmake g++ make pkg-config
-      libeigen3-dev petsc-dev slepc-dev libhdf5-openmpi-dev openmpi-bin
+      libeigen3-dev petsc-dev slepc-dev libsuitesparse-dev libhdf5-openmpi-dev openmpi-bin
       libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml)
