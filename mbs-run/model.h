@@ -34,6 +34,10 @@ struct Body {
   // file; `modes` modal coordinates follow the rigid ones in q and v.
   std::shared_ptr<const FlexibleBodyData> flex;
   int modes = 0;
+  // Initial modal coordinates and their rates (`modal_coordinates`,
+  // `modal_velocities` in the scene, the names of the results datasets, so a
+  // run can start from any row of another); zero unless given.
+  Eigen::VectorXd modal_coordinates, modal_velocities;
   int dof_index = -1;  // first velocity coordinate (6 + modes per free body), -1 if fixed
   int pos_index = -1;  // first position coordinate (7 + modes per free body)
   int nv() const { return 6 + modes; }

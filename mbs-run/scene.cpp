@@ -84,7 +84,7 @@ void parseInertia(const InputNode& b, Body& body) {
 
 Body parseBody(const InputNode& b) {
   b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
-               "angular_velocity"});
+               "angular_velocity", "modal_coordinates", "modal_velocities"});
   Body body;
   body.name = b["name"].asString();
   parseInertia(b, body);
@@ -102,6 +102,15 @@ Body parseBody(const InputNode& b) {
   if (b.has("angular_velocity")) body.angular_velocity = vec3(b["angular_velocity"]);
   if (body.fixed && (body.velocity.norm() > 0 || body.angular_velocity.norm() > 0))
     b.fail("a fixed body cannot have an initial velocity");
+  body.modal_coordinates = Eigen::VectorXd::Zero(body.modes);
+  body.modal_velocities = Eigen::VectorXd::Zero(body.modes);
+  for (const char* key : {"modal_coordinates", "modal_velocities"}) {
+    if (!b.has(key)) continue;
+    if (!body.flex) b[key].fail("only a flexible body has modal coordinates");
+    // One value per mode used (`modes:` of the flexible entry), in the file's order.
+    const Eigen::VectorXd v = b[key].asVector(body.modes);
+    (std::string(key) == "modal_coordinates" ? body.modal_coordinates : body.modal_velocities) = v;
+  }
   return body;
 }
 

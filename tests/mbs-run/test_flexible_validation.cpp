@@ -509,5 +509,57 @@ TEST(FlexibleValidation, KaneSpinUpBeamLinearModesFailAboveFirstFrequency) {
   std::filesystem::remove(file);
 }
 
+// Initial modal state (`modal_coordinates`, `modal_velocities`): a clamped
+// beam (frame held by a fixed joint at the root, clamped modes) without
+// gravity or damping decouples into modal oscillators, q_j'' + omega_j^2 q_j
+// = 0, so mode 1 started at q0 with rate v0 follows q0 cos(w t) + v0/w sin(w t)
+// and the others stay at rest.
+TEST(FlexibleValidation, InitialModalStateStartsTheModalOscillators) {
+  BeamSpec s;
+  s.elements = 10;
+  s.modes = 3;
+  const BeamModel bm = cantileverBeam(s);
+  const std::string file = writeBeam(bm, "modal0");
+  const double w1 = std::sqrt(bm.body.eigenvalues(0)), q0 = 2e-3, v0 = -0.05;
+  const double period = 2 * M_PI / w1;
+  char scene[1024];
+  std::snprintf(scene, sizeof scene, R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: beam
+    flexible: {file: %s, modes: 3}
+    modal_coordinates: [%.17g, 0, 0]
+    modal_velocities: [%.17g, 0, 0]
+joints:
+  - {name: clamp, type: fixed, bodies: [ground, beam], points: [[0, 0, 0], root]}
+simulation: {t_end: %.17g, output_step: %.17g, rtol: 1.0e-10}
+)",
+                file.c_str(), q0, v0, 1.25 * period, period / 40);
+  const Results r = simulate(sceneFromText(scene), {true});
+  ASSERT_EQ(r.status, "completed");
+  double err = 0.0, others = 0.0;
+  for (std::size_t k = 0; k < r.time.size(); ++k) {
+    const double t = r.time[k];
+    err = std::max(err, std::abs(r.modal[1][k](0) - (q0 * std::cos(w1 * t) + v0 / w1 * std::sin(w1 * t))));
+    others = std::max(others, r.modal[1][k].tail(2).cwiseAbs().maxCoeff());
+  }
+  std::printf("[   info   ] omega_1 %.4g rad/s: mode-1 error %.2e (amplitude %.2e), other modes %.2e\n", w1, err,
+              std::hypot(q0, v0 / w1), others);
+  // rtol 1e-10 on an exactly linear system: the error is the integration's.
+  EXPECT_LT(err, 1e-8 * std::hypot(q0, v0 / w1));  // measured 1e-10 relative: two decades of margin
+  EXPECT_LT(others, 1e-10);
+  // Wrong length: a located error naming the key and the count expected.
+  std::string bad = scene;
+  bad.replace(bad.find("modal_velocities: ["), std::string("modal_velocities: [").size(), "modal_velocities: [1, ");
+  try {
+    sceneFromText(bad);
+    FAIL() << "expected an InputError";
+  } catch (const fc::InputError& e) {
+    EXPECT_NE(e.keyPath().find("modal_velocities"), std::string::npos) << e.keyPath();
+    EXPECT_NE(std::string(e.what()).find("expected a list of 3 numbers, got 4"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(file);
+}
+
 }  // namespace
 }  // namespace fc::mbs::test
