@@ -115,7 +115,7 @@ class AlSolver {
   std::vector<BlockData> blocks_;
   std::vector<int> phi_outer_, phi_inner_;
   Eigen::MatrixXd S_;  // I/a + Phi M^-1 Phi^T
-  Eigen::LLT<Eigen::MatrixXd> s_llt_;
+  Eigen::MatrixXd s_L_;  // Cholesky factor of S (lower triangle)
   Eigen::LDLT<Eigen::MatrixXd> s_ldlt_;
   bool s_use_ldlt_ = false;
   Eigen::VectorXd solveS(const Eigen::VectorXd& r) const;
