@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "mbs-run/augmented_lagrangian.h"
+
 namespace fc::mbs {
 
 struct FlexibleBodyData;  // mbs-run/flexible/flexible_body.h
@@ -147,6 +149,9 @@ struct Settings {
   // stopping rule) let the SAR knee be captured at its toggle or stall the
   // step control there (docs/mbs-run.md).
   int multiplier_iterations = 3;
+  // How (M + a Phi^T Phi)^-1 is applied (augmented_lagrangian.h): block Schur
+  // complement up to AlSolver::kMaxSchurRows constraint rows, else sparse LDL^T.
+  AlMethod linear_solver = AlMethod::Automatic;
 };
 
 struct Model {

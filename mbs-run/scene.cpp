@@ -379,7 +379,14 @@ void applyPreset(const InputNode& node, Settings& st) {
 
 void parseSimulation(const InputNode& s, Settings& st) {
   s.allowKeys({"preset", "t_end", "output_step", "rtol", "atol", "integrator", "max_step", "penalty",
-               "stabilization_frequency", "stabilization_damping", "multiplier_iterations"});
+               "stabilization_frequency", "stabilization_damping", "multiplier_iterations", "linear_solver"});
+  if (auto ls = s.get("linear_solver")) {
+    const std::string v = ls->asString();
+    if (v == "auto") st.linear_solver = AlMethod::Automatic;
+    else if (v == "schur") st.linear_solver = AlMethod::BlockSchur;
+    else if (v == "sparse") st.linear_solver = AlMethod::SparseLdlt;
+    else ls->fail("expected auto, schur or sparse, got '" + v + "'");
+  }
   if (s.has("preset")) applyPreset(s["preset"], st);
   st.t_end = s["t_end"].asPositive();
   st.output_step = s.has("output_step") ? s["output_step"].asPositive() : st.t_end / 100.0;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/input.h"
 #include "mbs-run/scene.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
@@ -60,6 +61,38 @@ void SarRightHandSide(benchmark::State& state) {
   }
 }
 BENCHMARK(SarRightHandSide)->Unit(benchmark::kMicrosecond);
+
+// A planar chain of range(0) rods hanging from revolute joints (5 constraint
+// rows each, 6 coordinates per rod), one right-hand side with the linear
+// solver range(1) (0 block Schur, 1 sparse LDL^T): where the dense m x m
+// joint-space factorisation stops paying (AlSolver::kMaxSchurRows).
+void ChainRightHandSide(benchmark::State& state) {
+  const int n = int(state.range(0));
+  std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+  std::string j = "joints:\n";
+  for (int k = 0; k < n; ++k) {
+    y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
+         std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
+    const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
+    const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
+    j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
+         "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
+  }
+  std::string scene = y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: {t_end: 1, linear_solver: " +
+                      std::string(state.range(1) ? "sparse" : "schur") + "}\n";
+  const fc::mbs::Model m = fc::mbs::parseScene(fc::InputNode::loadString(scene, "chain.yaml"));
+  fc::mbs::System sys(m);
+  Eigen::VectorXd yv = sys.initialState(), yd;
+  sys.initializeJoints(yv);
+  sys.project(0.0, yv);
+  for (auto _ : state) {
+    sys.derivative(0.0, yv, yd);
+    benchmark::DoNotOptimize(yd.data());
+  }
+  state.counters["rows"] = 5.0 * n;
+  state.counters["coordinates"] = 6.0 * n;
+}
+BENCHMARK(ChainRightHandSide)->ArgsProduct({{10, 24, 48, 96, 192}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // Phase 1 (or the whole run, 20 s, when range(2) is 1) of one SAR model at
 // rtol 10^-range(0); range(1) selects the integrator (0 dopri5 throughout,

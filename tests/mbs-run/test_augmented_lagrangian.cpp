@@ -170,6 +170,28 @@ TEST(AugmentedLagrangianFallback, SingularBodyBlockFallsBackToSparse) {
   EXPECT_NEAR(r.vdot[3], -3.0, 1e-6);
 }
 
+// The automatic choice: block Schur up to kMaxSchurRows rows, sparse above
+// (a dense m x m factorisation costs m^3/3 whatever the sparsity).
+TEST(AugmentedLagrangianFallback, ManyRowsUseTheSparseFactorisation) {
+  for (int m : {AlSolver::kMaxSchurRows, AlSolver::kMaxSchurRows + 1}) {
+    const int n = 2 * m;
+    const SparseMatrixd M = Eigen::MatrixXd::Identity(n, n).sparseView();
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m, n);
+    for (int i = 0; i < m; ++i) {
+      P(i, 2 * i) = 1.0;
+      P(i, 2 * i + 1) = -1.0;
+    }
+    AlSolver solver;
+    solver.factorize(M, SparseMatrixd(P.sparseView()), 1e6);
+    ASSERT_TRUE(solver.ok());
+    EXPECT_EQ(solver.methodUsed(), m <= AlSolver::kMaxSchurRows ? AlMethod::BlockSchur : AlMethod::SparseLdlt);
+    // x_{2i} - x_{2i+1} = 0 under Q = e_{2i}: both move at 1/2.
+    const AlResult r = solver.accelerations(Eigen::VectorXd::Unit(n, 0), Eigen::VectorXd::Zero(m), 1e-12, 50);
+    EXPECT_NEAR(r.vdot[0], 0.5, 1e-12);
+    EXPECT_NEAR(r.vdot[1], 0.5, 1e-12);
+  }
+}
+
 TEST(AugmentedLagrangianProjection, VelocityProjectionIsMassOrthogonal) {
   const Case c = makeCase(10, 4, true, 2.0, 4);
   const SparseMatrixd M = c.M.sparseView(), Phi = c.Phi.sparseView();
