@@ -79,12 +79,26 @@ RevoluteFrame revoluteFrame(const Joint& jt) {
   return f;
 }
 
-double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
+namespace {
+// The three reference vectors of a revolute angle as attached vectors (value,
+// rate, Jacobian), and the angle's atan2 arguments x = f_j . f_i, y = f_j . h_i.
+struct AngleVectors {
+  Attached fi, hi, fj;
+  double x, y;
+};
+AngleVectors angleVectors(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
   const RevoluteFrame fr = revoluteFrame(jt);
-  const Vector3d fi = attachedVector(bi, fr.fi, jt.shapes_i.theta).x;
-  const Vector3d hi = attachedVector(bi, fr.hi, jt.shapes_i.theta).x;
-  const Vector3d fj = attachedVector(bj, fr.fj, jt.shapes_j.theta).x;
-  return std::atan2(fj.dot(hi), fj.dot(fi));
+  AngleVectors a{attachedVector(bi, fr.fi, jt.shapes_i.theta), attachedVector(bi, fr.hi, jt.shapes_i.theta),
+                 attachedVector(bj, fr.fj, jt.shapes_j.theta), 0.0, 0.0};
+  a.x = a.fj.x.dot(a.fi.x);
+  a.y = a.fj.x.dot(a.hi.x);
+  return a;
+}
+}  // namespace
+
+double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
+  const AngleVectors a = angleVectors(jt, bi, bj);
+  return std::atan2(a.y, a.x);
 }
 
 double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
@@ -92,15 +106,40 @@ double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi
   return rt.last_angle + wrapToPi(a - rt.last_angle);
 }
 
+// Derivation. theta = atan2(y, x) gives dtheta = (x dy - y dx) / rho^2,
+// rho^2 = x^2 + y^2. Each reference vector u_d = A (u + (Theta w) x u) is the
+// attached vector of kinematics.h, whose rate is exactly J_u v with
+// J_u = [0, -A u_d~, -A u~ Theta] (the modal rotation enters linearly, so
+// d/dt (Theta w) x u = (Theta wdot) x u with no neglected term). Then
+//   dy/dt = f_j . (J_hi v_i) + h_i . (J_fj v_j),  dx/dt = f_j . (J_fi v_i) + f_i . (J_fj v_j)
+// and collecting the coefficients of v_i and v_j gives gi and gj (header).
+// Written out, with u0 / ud a body-frame vector undeformed / turned by the
+// modal rotation, a = x h_i - y f_i (global), b = x h_id - y f_id and
+// b0 = x h_i0 - y f_i0 (body i axes), c = A_i^T f_j, e = A_j^T a:
+//   rho^2 gi = [0, (b x c)^T, -c^T b0~ Theta_i],
+//   rho^2 gj = [0, (f_jd x e)^T, -e^T f_j0~ Theta_j].
+// On rigid bodies with the joint assembled (f_j = x f_i + y h_i, rho = 1):
+// b x c = -n and f_jd x e = n in the bodies' axes, the torque pair of a
+// spring acting about the axis n.
+void revoluteAngleJacobian(const Joint& jt, const BodyPose& bi, const BodyPose& bj, Eigen::RowVectorXd& gi,
+                           Eigen::RowVectorXd& gj) {
+  const AngleVectors a = angleVectors(jt, bi, bj);
+  const double rho2 = a.x * a.x + a.y * a.y;
+  gi.setZero(bi.nv());
+  gj.setZero(bj.nv());
+  if (!(rho2 > 0.0)) return;  // f_j along the axis: the angle is undefined
+  gi = a.fj.x.transpose() * (a.x * a.hi.J - a.y * a.fi.J) / rho2;
+  gj = (a.x * a.hi.x - a.y * a.fi.x).transpose() * a.fj.J / rho2;
+}
+
 double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
-  // Angular velocity of each joint frame: A (omega' + Theta wdot).
-  auto spin = [](const BodyPose& b, const Eigen::MatrixXd& theta) {
-    Vector3d w = b.w;
-    if (b.modal.size() > 0 && theta.cols() == b.modal.size()) w += theta * b.modal_rate;
-    return Vector3d(b.A * w);
-  };
-  const Vector3d axis = attachedVector(bi, jt.axis_i.normalized(), jt.shapes_i.theta).x;
-  return axis.dot(spin(bj, jt.shapes_j.theta) - spin(bi, jt.shapes_i.theta));
+  // The same expression with the vectors' rates J_u v (kinematics.h).
+  const AngleVectors a = angleVectors(jt, bi, bj);
+  const double rho2 = a.x * a.x + a.y * a.y;
+  if (!(rho2 > 0.0)) return 0.0;
+  const double ydot = a.fj.x.dot(a.hi.xdot) + a.hi.x.dot(a.fj.xdot);
+  const double xdot = a.fj.x.dot(a.fi.xdot) + a.fi.x.dot(a.fj.xdot);
+  return (a.x * ydot - a.y * xdot) / rho2;
 }
 
 namespace {

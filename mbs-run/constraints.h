@@ -51,7 +51,20 @@ RevoluteFrame revoluteFrame(const Joint& jt);
 double rawRevoluteAngle(const Joint& jt, const BodyPose& bi, const BodyPose& bj);
 // Unwrapped angle (continuous past pi) given the runtime's last known angle.
 double revoluteAngle(const Joint& jt, const JointRuntime& rt, const BodyPose& bi, const BodyPose& bj);
-// d(angle)/dt = axis . (omega_j - omega_i), global.
+// Exact gradient of the angle with respect to the velocity coordinates of
+// both bodies, d(angle)/dt = gi v_i + gj v_j (v = [rdot, omega', wdot]): the
+// angle is atan2(y, x) with x = f_j . f_i, y = f_j . h_i of the attached
+// (modally rotated) reference vectors, whose rates are J_u v exactly
+// (kinematics.h), so
+//   gi = f_j^T (x J_hi - y J_fi) / (x^2 + y^2),  gj = (x h_i - y f_i)^T J_fj / (x^2 + y^2).
+// On rigid bodies whose revolute constraints hold (f_j perpendicular to the
+// axis) this is [0, -(A_i^T n)^T] and [0, (A_j^T n)^T], n the global axis.
+// A spring applies Q = -M(angle) g^T through it: its power is exactly
+// -dV/dt of V = int M, and a damper's exactly -c (g v)^2.
+void revoluteAngleJacobian(const Joint& jt, const BodyPose& bi, const BodyPose& bj, Eigen::RowVectorXd& gi,
+                           Eigen::RowVectorXd& gj);
+// d(angle)/dt = gi v_i + gj v_j (the exact rate of revoluteAngle); on rigid
+// bodies with the joint assembled, axis . (omega_j - omega_i), global.
 double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj);
 
 // Captures the current relative pose into rt (fixed joint activation, locking).

@@ -23,6 +23,7 @@ System::System(const Model& model) : model_(model) {
   }
   force_on_.resize(model.forces.size());
   for (std::size_t f = 0; f < model.forces.size(); ++f) force_on_[f] = model.forces[f].enabled;
+  solver_.setMethod(model.settings.linear_solver);
 }
 
 VectorXd System::initialState() const {
@@ -34,6 +35,10 @@ VectorXd System::initialState() const {
     const Eigen::Matrix3d A = fc::rotationMatrix(b.orientation.normalized());
     y.segment<3>(model_.nq + b.dof_index) = b.velocity;
     y.segment<3>(model_.nq + b.dof_index + 3) = A.transpose() * b.angular_velocity;
+    if (b.modes > 0 && b.modal_coordinates.size() == b.modes) {
+      y.segment(b.pos_index + 7, b.modes) = b.modal_coordinates;
+      y.segment(model_.nq + b.dof_index + 6, b.modes) = b.modal_velocities;
+    }
   }
   return y;
 }
@@ -180,6 +185,15 @@ void System::factorize() {
                              "(a mass matrix not positive definite, or non-finite state)");
 }
 
+namespace {
+// The velocity coordinates [rdot, omega', wdot] of a pose (zero for fixed bodies).
+VectorXd velocityOf(const BodyPose& b) {
+  VectorXd v(b.nv());
+  v << b.rdot, b.w, b.modal_rate;
+  return v;
+}
+}  // namespace
+
 void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q, double& dissipation,
                            double& applied_power) const {
   Q.setZero(model_.nv);
@@ -215,14 +229,23 @@ void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q
         }
         break;
       case ForceType::RotationalSpringDamper: {
+        // Q = -M g^T with g = d(angle)/dv, the exact gradient of the angle
+        // the potential is a function of (constraints.h): the spring's power
+        // is exactly -dV/dt and the damper's exactly -c angle_dot^2, also
+        // with large modal rotations, where a torque M n through J_w =
+        // [0, A, A Theta] matched the angle only to first order in them. On
+        // rigid bodies with the joint assembled g^T is [0, -A_i^T n] and
+        // [0, A_j^T n]: the torques M n on i and -M n on j, as before.
         const Joint& jt = model_.joints[fe.joint];
         const BodyPose &bi = P[jt.body_i], &bj = P[jt.body_j];
+        Eigen::RowVectorXd gi, gj;
+        revoluteAngleJacobian(jt, bi, bj, gi, gj);
         const double th = revoluteAngle(jt, joints_[fe.joint], bi, bj);
-        const double thd = revoluteRate(jt, bi, bj);
+        const double thd = gi.dot(velocityOf(bi)) + gj.dot(velocityOf(bj));
         const double M = fe.torque.value(th) + fe.damping * thd;
-        const Vector3d axis = attachedVector(bi, jt.axis_i.normalized(), jt.shapes_i.theta).x;
-        addTorque(jt.body_i, jt.shapes_i, M * axis);
-        addTorque(jt.body_j, jt.shapes_j, -M * axis);
+        const Body &body_i = model_.bodies[jt.body_i], &body_j = model_.bodies[jt.body_j];
+        if (!body_i.fixed) Q.segment(body_i.dof_index, body_i.nv()) -= M * gi.transpose();
+        if (!body_j.fixed) Q.segment(body_j.dof_index, body_j.nv()) -= M * gj.transpose();
         dissipation += fe.damping * thd * thd;
         break;
       }

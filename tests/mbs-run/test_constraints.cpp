@@ -8,6 +8,8 @@
 
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "common/rotations.h"
 #include "mbs-run/constraints.h"
 
@@ -149,6 +151,89 @@ TEST(Constraints, RevoluteAngleIsTheRelativeRotationAboutTheAxis) {
   rt.last_angle = 6 * M_PI + 0.4;
   bj.A = bi.A * fc::expRotation(0.5 * jt.axis_i);
   EXPECT_NEAR(revoluteAngle(jt, rt, bi, bj), 6 * M_PI + 0.5, 1e-12);
+}
+
+// The gradient of the revolute angle that the rotational spring applies its
+// torque through (Q = -M g^T): on flexible bodies with large modal rotations
+// (|Theta w| ~ 0.5 rad, where the first-order modal rotation I + (Theta w)~ is
+// far from orthonormal) g v equals the central difference of the angle
+// along the motion, and revoluteRate is the same number.
+TEST(Constraints, RevoluteAngleJacobianMatchesFiniteDifferencesOnFlexibleBodies) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const int nm = 3;
+  auto randomShapes = [&] {
+    Eigen::MatrixXd m(3, nm);
+    for (int k = 0; k < m.size(); ++k) m.data()[k] = u(rng);
+    return m;
+  };
+  for (unsigned trial = 0; trial < 6; ++trial) {
+    Joint jt = makeJoint(JointType::Revolute, rng);
+    jt.shapes_i.psi = randomShapes();
+    jt.shapes_i.theta = randomShapes();
+    jt.shapes_j.psi = randomShapes();
+    jt.shapes_j.theta = randomShapes();
+    const Motion mi = randomMotion(rng), mj = randomMotion(rng);
+    Eigen::VectorXd wi0(nm), wj0(nm), wid(nm), wjd(nm);
+    for (int k = 0; k < nm; ++k) {
+      wi0(k) = 0.3 * u(rng);
+      wj0(k) = 0.3 * u(rng);
+      wid(k) = u(rng);
+      wjd(k) = u(rng);
+    }
+    auto at = [&](const Motion& m, const Eigen::VectorXd& w0, const Eigen::VectorXd& wd, double t) {
+      BodyPose b = m.at(t);
+      b.modal = w0 + wd * t;
+      b.modal_rate = wd;
+      return b;
+    };
+    const BodyPose bi = at(mi, wi0, wid, 0.0), bj = at(mj, wj0, wjd, 0.0);
+    Eigen::RowVectorXd gi, gj;
+    revoluteAngleJacobian(jt, bi, bj, gi, gj);
+    ASSERT_EQ(gi.size(), 6 + nm);
+    ASSERT_EQ(gj.size(), 6 + nm);
+    Eigen::VectorXd vi(6 + nm), vj(6 + nm);
+    vi << mi.rd, mi.w0, wid;
+    vj << mj.rd, mj.w0, wjd;
+    const double h = 1e-5;
+    const double fd = (rawRevoluteAngle(jt, at(mi, wi0, wid, h), at(mj, wj0, wjd, h)) -
+                       rawRevoluteAngle(jt, at(mi, wi0, wid, -h), at(mj, wj0, wjd, -h))) /
+                      (2 * h);
+    const double g = gi.dot(vi) + gj.dot(vj);
+    // Central difference: h^2 = 1e-10 times O(1) third derivatives, rounding
+    // eps / h ~ 2e-11.
+    EXPECT_NEAR(g, fd, 1e-8) << trial;
+    EXPECT_NEAR(revoluteRate(jt, bi, bj), g, 1e-13) << trial;
+    // Each block separately (only one body moving), so no error cancels.
+    const double fd_i = (rawRevoluteAngle(jt, at(mi, wi0, wid, h), bj) -
+                         rawRevoluteAngle(jt, at(mi, wi0, wid, -h), bj)) / (2 * h);
+    EXPECT_NEAR(gi.dot(vi), fd_i, 1e-8) << trial;
+  }
+}
+
+// Rigid bodies with the revolute joint assembled: the gradient is the torque
+// pair of before, [0, -A_i^T n] on i and [0, A_j^T n] on j.
+TEST(Constraints, RevoluteAngleJacobianOnRigidBodiesIsTheAxisTorque) {
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (unsigned trial = 0; trial < 5; ++trial) {
+    Joint jt = makeJoint(JointType::Revolute, rng);
+    const Motion mi = randomMotion(rng);
+    const BodyPose bi = mi.at(0.0);
+    // Body j turned so that its axis lies on body i's, then about it.
+    BodyPose bj = randomMotion(rng).at(0.0);
+    const Vector3d n = bi.A * jt.axis_i;
+    const Eigen::Quaterniond align = Eigen::Quaterniond::FromTwoVectors(bj.A * jt.axis_j, n);
+    bj.A = fc::expRotation(u(rng) * 3.0 * n) * align.toRotationMatrix() * bj.A;
+    ASSERT_LT((bj.A * jt.axis_j - n).norm(), 1e-14);
+    Eigen::RowVectorXd gi, gj;
+    revoluteAngleJacobian(jt, bi, bj, gi, gj);
+    Eigen::Matrix<double, 1, 6> ei = Eigen::Matrix<double, 1, 6>::Zero(), ej = ei;
+    ei.tail<3>() = -(bi.A.transpose() * n).transpose();
+    ej.tail<3>() = (bj.A.transpose() * n).transpose();
+    EXPECT_LT((gi - ei).lpNorm<Eigen::Infinity>(), 1e-14) << trial;
+    EXPECT_LT((gj - ej).lpNorm<Eigen::Infinity>(), 1e-14) << trial;
+  }
 }
 
 }  // namespace
