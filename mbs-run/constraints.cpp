@@ -143,10 +143,16 @@ double revoluteRate(const Joint& jt, const BodyPose& bi, const BodyPose& bj) {
 }
 
 namespace {
+// Whether a body's attachment carries modal rotations (a flexible body's
+// interface or point with nm rotational shapes).
+bool turnsWithModes(const BodyPose& b, const Eigen::MatrixXd& theta) {
+  return b.modal.size() > 0 && theta.cols() == b.modal.size();
+}
 // Joint frame of a body: its axes turned by the modal rotation at the joint
-// (first order, as the constraint vectors).
+// (first order, as the constraint vectors): F = A (I + (Theta w)~), so that
+// F u is the attached vector of u (kinematics.h).
 Eigen::Matrix3d jointFrame(const BodyPose& b, const Eigen::MatrixXd& theta) {
-  if (b.modal.size() == 0 || theta.cols() != b.modal.size()) return b.A;
+  if (!turnsWithModes(b, theta)) return b.A;
   return b.A * (Eigen::Matrix3d::Identity() + fc::skew(theta * b.modal));
 }
 }  // namespace
@@ -154,8 +160,17 @@ Eigen::Matrix3d jointFrame(const BodyPose& b, const Eigen::MatrixXd& theta) {
 void captureFixed(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
   const Vector3d xi = attachedPoint(bi, jt.point_i, jt.shapes_i.psi).x;
   const Vector3d xj = attachedPoint(bj, jt.point_j, jt.shapes_j.psi).x;
-  rt.fixed_offset = bi.A.transpose() * (xj - xi);
-  rt.fixed_rotation = jointFrame(bi, jt.shapes_i.theta).inverse() * jointFrame(bj, jt.shapes_j.theta);
+  const Eigen::Matrix3d Fi = jointFrame(bi, jt.shapes_i.theta), Fj = jointFrame(bj, jt.shapes_j.theta);
+  // The rows hold F_i o = x_j - x_i (the offset turning with the modal
+  // rotation at point i) and (F_i R e_k) . (F_j e_(k+1)) = 0. F is orthonormal
+  // only to first order in the modal rotation, so R = F_i^-1 F_j^-T (the
+  // columns of F_i R are the dual basis of F_j's, (F_i R e_k) . (F_j e_m) =
+  // delta_km) makes them vanish exactly at capture; on rigid bodies it is
+  // A_i^T A_j, computed as before.
+  if (turnsWithModes(bi, jt.shapes_i.theta)) rt.fixed_offset = Fi.inverse() * (xj - xi);
+  else rt.fixed_offset = bi.A.transpose() * (xj - xi);
+  if (turnsWithModes(bj, jt.shapes_j.theta)) rt.fixed_rotation = Fi.inverse() * Fj.inverse().transpose();
+  else rt.fixed_rotation = Fi.inverse() * Fj;
 }
 
 void captureLock(const Joint& jt, JointRuntime& rt, const BodyPose& bi, const BodyPose& bj) {
@@ -214,7 +229,19 @@ void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& b
       break;
     }
     case JointType::Fixed: {
-      spherical(attachedPoint(bi, jt.point_i + rt.fixed_offset, psi_i), xj, o, 0);
+      if (turnsWithModes(bi, th_i)) {
+        // The captured offset turns with the modal rotation at point i, as
+        // the rotational rows' vectors do: x_i + F_i o.
+        Attached xo = attachedPoint(bi, jt.point_i, psi_i);
+        const Attached o_vec = vi(rt.fixed_offset);
+        xo.x += o_vec.x;
+        xo.xdot += o_vec.xdot;
+        xo.extra += o_vec.extra;
+        xo.J += o_vec.J;
+        spherical(xo, xj, o, 0);
+      } else {
+        spherical(attachedPoint(bi, jt.point_i + rt.fixed_offset, psi_i), xj, o, 0);
+      }
       const Eigen::Matrix3d& R = rt.fixed_rotation;
       for (int k = 0; k < 3; ++k) dot1(vi(R.col(k)), vj(Eigen::Vector3d::Unit((k + 1) % 3)), o, 3 + k);
       break;

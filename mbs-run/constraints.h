@@ -19,8 +19,11 @@ namespace fc::mbs {
 struct JointRuntime {
   bool enabled = true;
   bool locked = false;
-  // Fixed joint: the offset of the point of j from the point of i in body i
-  // axes, and the relative rotation A_i^T A_j, both captured at activation.
+  // Fixed joint: the offset of the point of j from the point of i in the
+  // joint frame of i (body i axes turned by the modal rotation at point i),
+  // and the rotation whose columns, turned with body i's joint frame, are
+  // held perpendicular to the axes of j's joint frame (A_i^T A_j on rigid
+  // bodies), both captured at activation.
   Eigen::Vector3d fixed_offset = Eigen::Vector3d::Zero();
   Eigen::Matrix3d fixed_rotation = Eigen::Matrix3d::Identity();
   // Locked revolute / prismatic: body-i vector whose dot product with the

@@ -6,6 +6,7 @@
 // velocities and accelerations over the tiny difference step.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -55,9 +56,44 @@ Joint makeJoint(JointType type, std::mt19937& rng) {
   return j;
 }
 
-void checkJoint(Joint jt, bool locked, bool driven, unsigned seed) {
+// Modal coordinates w(t) = w0 + wd t + wdd t^2 / 2 of a flexible body (empty: rigid).
+struct ModalMotion {
+  Eigen::VectorXd w0, wd, wdd;
+  void apply(BodyPose& b, double t) const {
+    b.modal = w0 + wd * t + 0.5 * wdd * t * t;
+    b.modal_rate = wd + wdd * t;
+  }
+};
+
+// nm > 0: both bodies flexible with nm modes, random shapes at the joint's
+// points and modal rotations |Theta w| ~ 0.5 rad.
+void checkJoint(Joint jt, bool locked, bool driven, unsigned seed, int nm = 0) {
   std::mt19937 rng(seed);
   const Motion mi = randomMotion(rng), mj = randomMotion(rng);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto randomMatrix = [&](int rows, int cols, double scale) {
+    Eigen::MatrixXd m(rows, cols);
+    for (int k = 0; k < m.size(); ++k) m.data()[k] = scale * u(rng);
+    return m;
+  };
+  ModalMotion wi{randomMatrix(nm, 1, 0.3), randomMatrix(nm, 1, 1.0), randomMatrix(nm, 1, 1.0)};
+  ModalMotion wj{randomMatrix(nm, 1, 0.3), randomMatrix(nm, 1, 1.0), randomMatrix(nm, 1, 1.0)};
+  if (nm > 0) {
+    jt.shapes_i.psi = randomMatrix(3, nm, 1.0);
+    jt.shapes_i.theta = randomMatrix(3, nm, 1.0);
+    jt.shapes_j.psi = randomMatrix(3, nm, 1.0);
+    jt.shapes_j.theta = randomMatrix(3, nm, 1.0);
+  }
+  auto poseI = [&](double t) {
+    BodyPose b = mi.at(t);
+    if (nm > 0) wi.apply(b, t);
+    return b;
+  };
+  auto poseJ = [&](double t) {
+    BodyPose b = mj.at(t);
+    if (nm > 0) wj.apply(b, t);
+    return b;
+  };
   JointRuntime rt;
   rt.locked = locked;
   if (driven) {
@@ -68,21 +104,21 @@ void checkJoint(Joint jt, bool locked, bool driven, unsigned seed) {
     jt.drive.frequency = 1.3;
   }
   // Held poses captured at a different time than checked, so they are generic.
-  const BodyPose ci = mi.at(-0.3), cj = mj.at(-0.3);
+  const BodyPose ci = poseI(-0.3), cj = poseJ(-0.3);
   captureFixed(jt, rt, ci, cj);
   captureLock(jt, rt, ci, cj);
   rt.angle_offset = 0.1;
   const double t0 = 0.2, h = 1e-4;
   ConstraintRows r0, rp, rm;
-  jointConstraints(jt, rt, mi.at(0), mj.at(0), t0, r0);
-  jointConstraints(jt, rt, mi.at(h), mj.at(h), t0 + h, rp);
-  jointConstraints(jt, rt, mi.at(-h), mj.at(-h), t0 - h, rm);
+  jointConstraints(jt, rt, poseI(0), poseJ(0), t0, r0);
+  jointConstraints(jt, rt, poseI(h), poseJ(h), t0 + h, rp);
+  jointConstraints(jt, rt, poseI(-h), poseJ(-h), t0 - h, rm);
   ASSERT_GT(r0.size(), 0);
-  Eigen::Matrix<double, 6, 1> vi, vj, ai, aj;
-  vi << mi.rd, mi.w0;
-  vj << mj.rd, mj.w0;
-  ai << mi.rdd, mi.wd;
-  aj << mj.rdd, mj.wd;
+  Eigen::VectorXd vi(6 + nm), vj(6 + nm), ai(6 + nm), aj(6 + nm);
+  vi << mi.rd, mi.w0, wi.wd;
+  vj << mj.rd, mj.w0, wj.wd;
+  ai << mi.rdd, mi.wd, wi.wdd;
+  aj << mj.rdd, mj.wd, wj.wdd;
   const Eigen::VectorXd phidot = r0.Ji * vi + r0.Jj * vj + r0.phit;
   const Eigen::VectorXd phidot_fd = (rp.phi - rm.phi) / (2 * h);
   const Eigen::VectorXd phiddot = r0.Ji * ai + r0.Jj * aj + r0.c;
@@ -110,6 +146,75 @@ TEST(Constraints, FixedUniversalCylindricalPrismaticMatchFiniteDifferences) {
   std::mt19937 rng(3);
   for (JointType t : {JointType::Fixed, JointType::Universal, JointType::Cylindrical, JointType::Prismatic})
     for (unsigned s = 0; s < 3; ++s) checkJoint(makeJoint(t, rng), false, false, 50 + s);
+}
+
+// The same on flexible bodies with large modal rotations: the attached
+// points and vectors (kinematics.h), and the fixed joint's offset turning
+// with the modal rotation at point i.
+TEST(Constraints, EveryJointOnFlexibleBodiesMatchesFiniteDifferences) {
+  std::mt19937 rng(7);
+  for (JointType t : {JointType::Spherical, JointType::Fixed, JointType::Universal, JointType::Cylindrical,
+                      JointType::Prismatic})
+    for (unsigned s = 0; s < 3; ++s) checkJoint(makeJoint(t, rng), false, false, 60 + s, 3);
+  for (unsigned s = 0; s < 3; ++s) {
+    const Joint j = makeJoint(JointType::Revolute, rng);
+    checkJoint(j, false, false, 70 + s, 3);
+    checkJoint(j, true, false, 80 + s, 3);
+    checkJoint(j, false, true, 90 + s, 3);
+  }
+}
+
+// A weld captured on deformed flexible bodies holds exactly the captured
+// pose: the offset is stored in body i's joint frame F_i = A_i (I + (Theta w)~)
+// and the rotation as F_i^-1 F_j^-T, the dual basis of j's joint frame (F is
+// orthonormal only to first order; R = F_i^-1 F_j left rows of the order of
+// |Theta w|^2, 2e-3 to 7e-2 here). Moving body i's modes then moves the weld point
+// with the modal rotation: x_j = x_i + F_i o.
+TEST(Constraints, FixedJointOnFlexibleBodiesHoldsTheCapturedPose) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const int nm = 3;
+  auto randomMatrix = [&](int rows, int cols, double scale) {
+    Eigen::MatrixXd m(rows, cols);
+    for (int k = 0; k < m.size(); ++k) m.data()[k] = scale * u(rng);
+    return m;
+  };
+  for (unsigned trial = 0; trial < 5; ++trial) {
+    Joint jt = makeJoint(JointType::Fixed, rng);
+    jt.shapes_i.psi = randomMatrix(3, nm, 1.0);
+    jt.shapes_i.theta = randomMatrix(3, nm, 1.0);
+    jt.shapes_j.psi = randomMatrix(3, nm, 1.0);
+    jt.shapes_j.theta = randomMatrix(3, nm, 1.0);
+    BodyPose bi = randomMotion(rng).at(0.0), bj = randomMotion(rng).at(0.0);
+    bi.modal = randomMatrix(nm, 1, 0.3);
+    bj.modal = randomMatrix(nm, 1, 0.3);
+    bi.modal_rate = bj.modal_rate = Eigen::VectorXd::Zero(nm);
+    JointRuntime rt;
+    captureFixed(jt, rt, bi, bj);
+    ConstraintRows r;
+    jointConstraints(jt, rt, bi, bj, 0.0, r);
+    ASSERT_EQ(r.size(), 6);
+    EXPECT_LT(r.phi.cwiseAbs().maxCoeff(), 1e-14) << trial;
+    // The former capture R = F_i^-1 F_j: rows of order |Theta w|^2.
+    JointRuntime old = rt;
+    auto frame = [](const BodyPose& b, const Eigen::MatrixXd& th) {
+      return Eigen::Matrix3d(b.A * (Eigen::Matrix3d::Identity() + fc::skew(th * b.modal)));
+    };
+    old.fixed_rotation = frame(bi, jt.shapes_i.theta).inverse() * frame(bj, jt.shapes_j.theta);
+    ConstraintRows ro;
+    jointConstraints(jt, old, bi, bj, 0.0, ro);
+    std::printf("[   info   ] weld captured on deformed bodies: rows %.1e (former capture %.1e)\n",
+                r.phi.cwiseAbs().maxCoeff(), ro.phi.tail<3>().cwiseAbs().maxCoeff());
+    // Deform body i further: the weld point moves with the modal rotation at
+    // point i, x_j = x_i + F_i o (it followed A_i only, x_i + A_i o, before).
+    bi.modal += randomMatrix(nm, 1, 0.1);
+    jointConstraints(jt, rt, bi, bj, 0.0, r);
+    const Eigen::Matrix3d Fi = frame(bi, jt.shapes_i.theta);
+    const Vector3d xi = bi.r + bi.A * (jt.point_i + jt.shapes_i.psi * bi.modal);
+    const Vector3d xj = bj.r + bj.A * (jt.point_j + jt.shapes_j.psi * bj.modal);
+    EXPECT_LT((r.phi.head<3>() - (xj - xi - Fi * rt.fixed_offset)).norm(), 1e-14) << trial;
+    EXPECT_GT((Fi * rt.fixed_offset - bi.A * rt.fixed_offset).norm(), 1e-3) << trial;  // the test can tell
+  }
 }
 
 TEST(Constraints, CapturedJointsHoldTheCapturedPose) {
