@@ -192,29 +192,40 @@ VectorXd AlSolver::solveS(const VectorXd& r) const {
   return x;
 }
 
-VectorXd AlSolver::solve(const VectorXd& r) const {
-  if (used_ == AlMethod::SparseLdlt) return ldlt_.solve(r);
-  // x = L^-T (y - V z), y = L^-1 r, z = S^-1 Phi M^-1 r = S^-1 sum V^T y.
-  VectorXd x = r, u = VectorXd::Zero(Phi_.rows());
+// The two halves of M^-1 Phi^T-type products on the blocks: y <- L^-1 y per
+// block while u gathers Phi M^-1-side terms V^T y, and x <- L^-T (x - V z)
+// per block.
+void AlSolver::forwardBlocks(VectorXd& y, VectorXd& u) const {
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const BlockData& B = blocks_[b];
-    auto xb = x.segment(M_.offset[b], M_.block[b].rows());
-    B.llt.matrixL().solveInPlace(xb);
+    auto yb = y.segment(M_.offset[b], M_.block[b].rows());
+    B.llt.matrixL().solveInPlace(yb);
     if (B.rows.empty()) continue;
-    const VectorXd pu = B.V.transpose() * xb;
-    for (std::size_t k = 0; k < B.rows.size(); ++k) u[B.rows[k]] += pu[k];
+    const VectorXd ub = B.V.transpose() * yb;
+    for (std::size_t k = 0; k < B.rows.size(); ++k) u[B.rows[k]] += ub[k];
   }
-  const VectorXd z = u.size() ? solveS(u) : u;
+}
+
+void AlSolver::backwardBlocks(VectorXd& x, const VectorXd& z) const {
+  VectorXd zb;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const BlockData& B = blocks_[b];
     auto xb = x.segment(M_.offset[b], M_.block[b].rows());
     if (!B.rows.empty()) {
-      VectorXd zb(B.rows.size());
+      zb.resize(B.rows.size());
       for (std::size_t k = 0; k < B.rows.size(); ++k) zb[k] = z[B.rows[k]];
       xb.noalias() -= B.V * zb;
     }
     B.llt.matrixU().solveInPlace(xb);
   }
+}
+
+VectorXd AlSolver::solve(const VectorXd& r) const {
+  if (used_ == AlMethod::SparseLdlt) return ldlt_.solve(r);
+  // x = L^-T (y - V z), y = L^-1 r, z = S^-1 Phi M^-1 r = S^-1 sum V^T y.
+  VectorXd x = r, u = VectorXd::Zero(Phi_.rows());
+  forwardBlocks(x, u);
+  backwardBlocks(x, u.size() ? solveS(u) : u);
   return x;
 }
 
@@ -281,28 +292,12 @@ VectorXd AlSolver::iterateSchur(const VectorXd& b, const VectorXd& g, double tol
                                 VectorXd* mu_out, int* its, double* res) const {
   const double a = alpha_;
   const int m = int(Phi_.rows());
-  VectorXd yl = b, c = g;  // yl = L^-1 b per block
-  for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const BlockData& B = blocks_[k];
-    auto yb = yl.segment(M_.offset[k], M_.block[k].rows());
-    B.llt.matrixL().solveInPlace(yb);
-    if (B.rows.empty()) continue;
-    const VectorXd cb = B.V.transpose() * yb;
-    for (std::size_t i = 0; i < B.rows.size(); ++i) c[B.rows[i]] += cb[i];
-  }
-  VectorXd x(b.size()), zb;
+  VectorXd yl = b, c = g;  // yl = L^-1 b per block, c = Phi M^-1 b + g
+  forwardBlocks(yl, c);
+  VectorXd x(b.size());
   auto accelerationsFor = [&](const VectorXd& lam) {
     x = yl;
-    for (std::size_t k = 0; k < blocks_.size(); ++k) {
-      const BlockData& B = blocks_[k];
-      auto xb = x.segment(M_.offset[k], M_.block[k].rows());
-      if (!B.rows.empty()) {
-        zb.resize(B.rows.size());
-        for (std::size_t i = 0; i < B.rows.size(); ++i) zb[i] = lam[B.rows[i]];
-        xb.noalias() -= B.V * zb;
-      }
-      B.llt.matrixU().solveInPlace(xb);
-    }
+    backwardBlocks(x, lam);
   };
   VectorXd lam = m ? solveS(c) : VectorXd();
   accelerationsFor(lam);

@@ -93,6 +93,8 @@ class AlSolver {
 
  private:
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;  // K^-1 r
+  void forwardBlocks(Eigen::VectorXd& y, Eigen::VectorXd& u) const;
+  void backwardBlocks(Eigen::VectorXd& x, const Eigen::VectorXd& z) const;
   Eigen::VectorXd multiplyM(const Eigen::VectorXd& x) const;
   bool factorizeSchur();
   void factorizeSparse();

@@ -68,29 +68,33 @@ simulation: {t_end: 3.0, output_step: 0.05, rtol: %.17g, atol: %.17g}
 }
 
 
+// Largest distance between rod 2's tip in the results and in the Lagrange
+// solution, integrated alongside with RK4 at h = 1e-4 between samples (local
+// error ~ h^5 |y^(5)| ~ 1e-17 per step, far below any engine tolerance here).
+double tipErrorAgainstLagrange(const Results& r) {
+  Eigen::VectorXd y(4);
+  y << th1, th2, 0, 0;
+  double t = 0.0, worst = 0.0;
+  for (std::size_t k = 1; k < r.time.size(); ++k) {
+    y = rk4(lagrange, y, t, r.time[k], 500);
+    t = r.time[k];
+    const Eigen::Vector3d tip_ref = kL1 * Eigen::Vector3d(std::sin(y[0]), 0, -std::cos(y[0])) +
+                                    kL2 * Eigen::Vector3d(std::sin(y[1]), 0, -std::cos(y[1]));
+    // Tip of rod 2 = centre + A (L2/2, 0, 0): first column of A from p.
+    const Eigen::Vector4d p = r.orientation[2][k];
+    const Eigen::Vector3d col0(2 * (p[0] * p[0] + p[1] * p[1]) - 1, 2 * (p[1] * p[2] + p[0] * p[3]),
+                               2 * (p[1] * p[3] - p[0] * p[2]));
+    worst = std::max(worst, (r.position[2][k] + 0.5 * kL2 * col0 - tip_ref).norm());
+  }
+  return worst;
+}
+
 TEST(DoublePendulum, MatchesMinimalCoordinateLagrangeSolution) {
   const Model model = sceneFromText(pendulumScene(1e-10, 1e-13));
   const Results r = simulate(model, {true});
   ASSERT_EQ(r.status, "completed");
 
-  Eigen::VectorXd y(4);
-  y << th1, th2, 0, 0;
-  double t = 0.0, worst = 0.0;
-  for (std::size_t k = 1; k < r.time.size(); ++k) {
-    // RK4 with h = 1e-4: local error ~ h^5 |y^(5)| ~ 1e-17 per step, far below
-    // the 1e-10 relative tolerance of the engine.
-    y = rk4(lagrange, y, t, r.time[k], 500);
-    t = r.time[k];
-    const Eigen::Vector3d tip_ref = kL1 * Eigen::Vector3d(std::sin(y[0]), 0, -std::cos(y[0])) +
-                                    kL2 * Eigen::Vector3d(std::sin(y[1]), 0, -std::cos(y[1]));
-    const Eigen::Vector4d p = r.orientation[2][k];
-    const Eigen::Vector3d x2 = r.position[2][k];
-    // Tip of rod 2 = centre + A (L2/2, 0, 0): first column of A from p.
-    const Eigen::Vector3d col0(2 * (p[0] * p[0] + p[1] * p[1]) - 1, 2 * (p[1] * p[2] + p[0] * p[3]),
-                               2 * (p[1] * p[3] - p[0] * p[2]));
-    const Eigen::Vector3d tip = x2 + 0.5 * kL2 * col0;
-    worst = std::max(worst, (tip - tip_ref).norm());
-  }
+  const double worst = tipErrorAgainstLagrange(r);
   // The motion is chaotic (largest Lyapunov exponent a few 1/s), so errors of
   // order rtol = 1e-10 grow by ~e^(3 * 3) ~ 1e4 over 3 s: 1e-5 m is the bound a
   // correct engine meets; a wrong term in M or Q_v gives errors of order 0.1 m.
@@ -143,19 +147,7 @@ TEST(DoublePendulum, LooseToleranceProjectsOnlyVisibleDrift) {
   // Still the Lagrange solution: measured 1.1e-4 m, i.e. atol grown by the
   // chaotic swing; the bound keeps two decades of margin and is still far
   // below the metres a drift left to run away would give.
-  Eigen::VectorXd y(4);
-  y << th1, th2, 0, 0;
-  double t = 0.0, worst = 0.0;
-  for (std::size_t k = 1; k < r.time.size(); ++k) {
-    y = rk4(lagrange, y, t, r.time[k], 500);
-    t = r.time[k];
-    const Eigen::Vector3d tip_ref = kL1 * Eigen::Vector3d(std::sin(y[0]), 0, -std::cos(y[0])) +
-                                    kL2 * Eigen::Vector3d(std::sin(y[1]), 0, -std::cos(y[1]));
-    const Eigen::Vector4d p = r.orientation[2][k];
-    const Eigen::Vector3d col0(2 * (p[0] * p[0] + p[1] * p[1]) - 1, 2 * (p[1] * p[2] + p[0] * p[3]),
-                               2 * (p[1] * p[3] - p[0] * p[2]));
-    worst = std::max(worst, (r.position[2][k] + 0.5 * kL2 * col0 - tip_ref).norm());
-  }
+  const double worst = tipErrorAgainstLagrange(r);
   std::printf("[   info   ] tip error vs Lagrange/RK4: %.3e m\n", worst);
   EXPECT_LT(worst, 1e-2);
 }
