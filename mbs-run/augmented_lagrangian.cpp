@@ -50,14 +50,28 @@ BlockDiagonal BlockDiagonal::fromSparse(const SparseMatrixd& M) {
   return D;
 }
 
+bool AlSolver::SparsityPattern::update(const SparseMatrixd& A) {
+  // A is compressed (setFromTriplets, sparse products, makeCompressed).
+  const bool same = outer.size() == std::size_t(A.cols() + 1) &&
+                    std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+                    inner.size() == std::size_t(A.nonZeros()) &&
+                    std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+  if (same) return false;
+  outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+  inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  return true;
+}
+
+bool AlSolver::wantsSchur(const SparseMatrixd& Phi_v) const {
+  return method_ == AlMethod::BlockSchur || (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
+}
+
 void AlSolver::factorize(const BlockDiagonal& M, const SparseMatrixd& Phi_v, double alpha) {
   alpha_ = alpha;
   M_ = M;
   Phi_ = Phi_v;
   M_sparse_.resize(0, 0);
-  const bool schur = method_ == AlMethod::BlockSchur ||
-                     (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
-  if (schur && factorizeSchur()) {
+  if (wantsSchur(Phi_v) && factorizeSchur()) {
     used_ = AlMethod::BlockSchur;
     return;
   }
@@ -68,9 +82,7 @@ void AlSolver::factorize(const BlockDiagonal& M, const SparseMatrixd& Phi_v, dou
 void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, double alpha) {
   alpha_ = alpha;
   Phi_ = Phi_v;
-  const bool schur = method_ == AlMethod::BlockSchur ||
-                     (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
-  if (schur) {
+  if (wantsSchur(Phi_v)) {
     M_ = BlockDiagonal::fromSparse(M);
     M_sparse_.resize(0, 0);
     if (factorizeSchur()) {
@@ -104,11 +116,8 @@ bool choleskyInPlace(Eigen::MatrixXd& A) {
 bool AlSolver::factorizeSchur() {
   const int m = int(Phi_.rows());
   const std::size_t nb = M_.block.size();
-  const bool same_pattern = blocks_.size() == nb && phi_outer_.size() == std::size_t(Phi_.cols() + 1) &&
-                            std::equal(phi_outer_.begin(), phi_outer_.end(), Phi_.outerIndexPtr()) &&
-                            phi_inner_.size() == std::size_t(Phi_.nonZeros()) &&
-                            std::equal(phi_inner_.begin(), phi_inner_.end(), Phi_.innerIndexPtr());
-  if (!same_pattern) {
+  const bool new_pattern = phi_pattern_.update(Phi_);
+  if (new_pattern || blocks_.size() != nb) {
     blocks_.assign(nb, BlockData{});
     std::vector<int> local(m, -1);
     for (std::size_t b = 0; b < nb; ++b) {
@@ -126,8 +135,6 @@ bool AlSolver::factorizeSchur() {
       for (int c = c0; c < c0 + n; ++c)
         for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.slot.push_back(index[it.row()]);
     }
-    phi_outer_.assign(Phi_.outerIndexPtr(), Phi_.outerIndexPtr() + Phi_.cols() + 1);
-    phi_inner_.assign(Phi_.innerIndexPtr(), Phi_.innerIndexPtr() + Phi_.nonZeros());
   }
   S_.setZero(m, m);
   for (std::size_t b = 0; b < nb; ++b) {
@@ -136,7 +143,7 @@ bool AlSolver::factorizeSchur() {
     const int n = int(M_.block[b].rows()), nr = int(B.rows.size());
     B.llt.compute(M_.block[b]);
     if (B.llt.info() != Eigen::Success) {
-      phi_outer_.clear();  // the sparse path will run; rebuild the pattern next time
+      phi_pattern_.clear();  // the sparse path will run; rebuild the pattern next time
       return false;  // singular body block: K may still be definite
     }
     if (nr == 0) continue;
@@ -165,15 +172,7 @@ void AlSolver::factorizeSparse() {
   SparseMatrixd K = M_sparse_;
   if (Phi_.rows() > 0) K += alpha_ * SparseMatrixd(Phi_.transpose() * Phi_);
   K.makeCompressed();
-  const bool same = k_outer_.size() == std::size_t(K.cols() + 1) &&
-                    std::equal(k_outer_.begin(), k_outer_.end(), K.outerIndexPtr()) &&
-                    k_inner_.size() == std::size_t(K.nonZeros()) &&
-                    std::equal(k_inner_.begin(), k_inner_.end(), K.innerIndexPtr());
-  if (!same) {
-    ldlt_.analyzePattern(K);
-    k_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.cols() + 1);
-    k_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
-  }
+  if (k_pattern_.update(K)) ldlt_.analyzePattern(K);
   ldlt_.factorize(K);
   ok_ = ldlt_.info() == Eigen::Success;
 }

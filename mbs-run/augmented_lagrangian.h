@@ -118,8 +118,17 @@ class AlSolver {
     Eigen::MatrixXd V, G;
     Eigen::LLT<Eigen::MatrixXd> llt;
   };
+  // The index arrays of a compressed sparse matrix, to tell when its
+  // pattern changes (and cached symbolic work must be redone).
+  struct SparsityPattern {
+    std::vector<int> outer, inner;
+    bool update(const SparseMatrixd& A);  // true (and stored) if A's pattern differs
+    void clear() { outer.clear(); }
+  };
+  bool wantsSchur(const SparseMatrixd& Phi_v) const;
+
   std::vector<BlockData> blocks_;
-  std::vector<int> phi_outer_, phi_inner_;
+  SparsityPattern phi_pattern_;
   Eigen::MatrixXd S_;  // I/a + Phi M^-1 Phi^T
   Eigen::MatrixXd s_L_;  // Cholesky factor of S (lower triangle)
   Eigen::LDLT<Eigen::MatrixXd> s_ldlt_;
@@ -131,7 +140,7 @@ class AlSolver {
   // Sparse LDL^T; the symbolic analysis is kept while K's pattern is unchanged.
   SparseMatrixd M_sparse_;
   Eigen::SimplicialLDLT<SparseMatrixd> ldlt_;
-  std::vector<int> k_outer_, k_inner_;
+  SparsityPattern k_pattern_;
 };
 
 }  // namespace fc::mbs

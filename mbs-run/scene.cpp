@@ -102,15 +102,15 @@ Body parseBody(const InputNode& b) {
   if (b.has("angular_velocity")) body.angular_velocity = vec3(b["angular_velocity"]);
   if (body.fixed && (body.velocity.norm() > 0 || body.angular_velocity.norm() > 0))
     b.fail("a fixed body cannot have an initial velocity");
-  body.modal_coordinates = Eigen::VectorXd::Zero(body.modes);
-  body.modal_velocities = Eigen::VectorXd::Zero(body.modes);
-  for (const char* key : {"modal_coordinates", "modal_velocities"}) {
-    if (!b.has(key)) continue;
+  // One value per mode used (`modes:` of the flexible entry), in the file's order; zero if absent.
+  auto initialModal = [&](const char* key, Eigen::VectorXd& out) {
+    out = Eigen::VectorXd::Zero(body.modes);
+    if (!b.has(key)) return;
     if (!body.flex) b[key].fail("only a flexible body has modal coordinates");
-    // One value per mode used (`modes:` of the flexible entry), in the file's order.
-    const Eigen::VectorXd v = b[key].asVector(body.modes);
-    (std::string(key) == "modal_coordinates" ? body.modal_coordinates : body.modal_velocities) = v;
-  }
+    out = b[key].asVector(body.modes);
+  };
+  initialModal("modal_coordinates", body.modal_coordinates);
+  initialModal("modal_velocities", body.modal_velocities);
   return body;
 }
 

@@ -320,11 +320,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   ydot[nq + nv + 1] = applied + drive_power;
 }
 
-double System::constraintViolation(double t, const VectorXd& y) {
-  poses(y, P_);
-  assembleConstraints(t, P_);
-  return phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
-}
+double System::constraintViolation(double t, const VectorXd& y) { return violations(t, y).position; }
 
 System::Violations System::violations(double t, const VectorXd& y) {
   poses(y, P_);
