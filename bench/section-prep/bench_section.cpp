@@ -112,7 +112,7 @@ BENCHMARK(BM_Grid)->Args({40, 0})->Args({160, 0})->Args({320, 0})->Args({500, 0}
 
 void BM_MH104(benchmark::State& state) {
   static const VabsModel model =
-      readVabsFile(std::string(FLEXCOMP_SHARED_DIR) + "/reference/vabs/mh104.sg");
+      readVabsFile(std::string(FLEXCOMP_DATA_DIR) + "/vabs/mh104.sg");
   for (auto _ : state) {
     SectionProperties p = analyzeSection(model.mesh);
     benchmark::DoNotOptimize(p.timoshenko(0, 0));

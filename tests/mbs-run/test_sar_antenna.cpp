@@ -1,4 +1,4 @@
-// The rigid SAR antenna (shared reference scene, 12 bodies, 3 redundant
+// The rigid SAR antenna (reference scene v1, tests/data/sar, 12 bodies, 3 redundant
 // constraint equations, a toggle position of the B7/B8 knee) through phase 1:
 // it must run without special-casing, reach the aligned knee at a time
 // comparable to the paper's 5.5 s (Neto et al. 2006, sec. 4.4), hold the
@@ -15,7 +15,7 @@ namespace fc::mbs {
 namespace {
 
 TEST(SarAntenna, PhaseOneReachesAlignmentThroughTheToggle) {
-  Model m = loadScene(std::string(FLEXCOMP_SHARED_DIR) + "/reference/sar-rigid-scene.yaml");
+  Model m = loadScene(std::string(FLEXCOMP_DATA_DIR) + "/sar/sar-rigid-scene-v1.yaml");
   m.settings.t_end = 7.0;
   const Results r = simulate(m, {true});
   ASSERT_EQ(r.status, "completed");

@@ -82,8 +82,8 @@ TEST(SceneErrors, BadIntegratorName) {
 }
 
 TEST(SceneErrors, SharedSarSceneParses) {
-  // The shared reference scene is valid input as distributed.
-  const Model m = loadScene(std::string(FLEXCOMP_SHARED_DIR) + "/reference/sar-rigid-scene.yaml");
+  // The v1 reference scene (tests/data/sar) is valid input as distributed.
+  const Model m = loadScene(std::string(FLEXCOMP_DATA_DIR) + "/sar/sar-rigid-scene-v1.yaml");
   EXPECT_EQ(m.bodies.size(), 12u);
   EXPECT_EQ(m.joints.size(), 20u);
   EXPECT_EQ(m.nv, 66);

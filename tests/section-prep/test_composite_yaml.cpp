@@ -1,7 +1,7 @@
 // Composite sections entered through the YAML path (gmsh meshes of our own)
 // against VABS's published results for the same section on VABS's own mesh:
 // the circumferentially uniform stiffness (CUS) box [15]6 of the VABS
-// examples (reference/vabs/box_cus_comp.sg, in inches and psi). This checks
+// examples (tests/data/vabs/box_cus_comp.sg, in inches and psi). This checks
 // the ply-angle and wall-orientation conventions of the box mesher, including
 // the signs of the extension-twist and shear-bending couplings.
 #include <gtest/gtest.h>
@@ -37,8 +37,8 @@ std::string cusBoxYaml(double angle, double h = 0.005) {
 TEST(CompositeBox, CusBoxMatchesVabs) {
   const SectionSpec spec = readSectionSpec(InputNode::loadString(cusBoxYaml(15), "cus.yaml"));
   const SectionProperties p = analyzeSection(meshSection(spec));
-  const auto ref = testing::readVabsK(std::string(FLEXCOMP_SHARED_DIR) +
-                                      "/reference/vabs/box_cus_comp.sg.K");
+  const auto ref = testing::readVabsK(std::string(FLEXCOMP_DATA_DIR) +
+                                      "/vabs/box_cus_comp.sg.K");
   double worst = 0;
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) {

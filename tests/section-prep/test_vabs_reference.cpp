@@ -1,8 +1,8 @@
 // Acceptance test of issue 3: on VABS's own inputs, section-prep reproduces the
-// matrices and centres VABS wrote to the .K files (VABS 4.x, reference/vabs/).
+// matrices and centres VABS wrote to the .K files (VABS 4.x, tests/data/vabs/).
 // Same mesh, same element types, same theory: the only differences left are
 // rounding and VABS's 11-digit printout, so 1e-6 relative to the diagonal is
-// a strict test (README of reference/vabs reports ~1e-9 agreement).
+// a strict test (tests/data/vabs/README.md reports ~1e-9 agreement).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,7 +20,7 @@
 namespace fc::section {
 namespace {
 
-const std::string kDir = std::string(FLEXCOMP_SHARED_DIR) + "/reference/vabs/";
+const std::string kDir = std::string(FLEXCOMP_DATA_DIR) + "/vabs/";
 
 // Largest |a_ij - b_ij| / sqrt(|b_ii b_jj|): errors measured against the
 // diagonal, so that a tiny coupling term is not required to match relatively.
