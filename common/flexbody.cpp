@@ -248,6 +248,11 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   f.writeScalar("/inertia/mass", body.mass);
   f.writeVector("/inertia/center_of_mass", body.center_of_mass);
   f.writeMatrix("/inertia/tensor", body.inertia_tensor);
+  if (body.has_exact_inertia) {
+    f.writeScalar("/inertia/exact/mass", body.exact_mass);
+    f.writeVector("/inertia/exact/center_of_mass", body.exact_center_of_mass);
+    f.writeMatrix("/inertia/exact/tensor", body.exact_inertia_tensor);
+  }
 
   f.createGroup("/interfaces");
   for (const auto& it : body.interfaces) {
@@ -324,6 +329,13 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
   const std::vector<double> com = readLeading(f, "/inertia/center_of_mass", {3}, {true});
   b.center_of_mass = Eigen::Vector3d(com[0], com[1], com[2]);
   b.inertia_tensor = rowMajor(readLeading(f, "/inertia/tensor", {3, 3}, {true, true}), 3, 3);
+  if (f.exists("/inertia/exact/mass")) {
+    b.has_exact_inertia = true;
+    b.exact_mass = f.readScalar("/inertia/exact/mass");
+    const std::vector<double> ec = readLeading(f, "/inertia/exact/center_of_mass", {3}, {true});
+    b.exact_center_of_mass = Eigen::Vector3d(ec[0], ec[1], ec[2]);
+    b.exact_inertia_tensor = rowMajor(readLeading(f, "/inertia/exact/tensor", {3, 3}, {true, true}), 3, 3);
+  }
 
   if (f.exists("/interfaces"))
     for (const std::string& name : f.children("/interfaces")) {

@@ -58,6 +58,12 @@ struct FlexBody {
   double mass = 0.0;                            // [kg]
   Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();    // body frame [m]
   Eigen::Matrix3d inertia_tensor = Eigen::Matrix3d::Zero();    // about the body origin, undeformed [kg m^2]
+  // The three above are the simulated body's (what the invariants imply). The exact
+  // continuum values, written under /inertia/exact/ when they differ from those.
+  bool has_exact_inertia = false;
+  double exact_mass = 0.0;
+  Eigen::Vector3d exact_center_of_mass = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d exact_inertia_tensor = Eigen::Matrix3d::Zero();
 
   long nodeCount() const { return static_cast<long>(nodes.rows()); }
   int modeCount() const { return static_cast<int>(eigenvalues.size()); }

@@ -227,10 +227,12 @@ BodySpec parseBodySpec(const InputNode& root) {
   } else {
     b.fail("missing the mode selection: expected modes: N or max_frequency_hz: F");
   }
-  const std::string mass = b.string("mass", "lumped");
-  if (mass == "lumped") spec.lumped = true;
+  // Default lumped_moments: the simulated body then has the exact mass, centre and
+  // inertia (docs/fe-prep.md, "Mass and inertia"); plain row sums only when asked.
+  const std::string mass = b.string("mass", "lumped_moments");
+  if (mass == "lumped") spec.lumped = true, spec.moment_lumping = false;
   else if (mass == "lumped_moments") spec.lumped = spec.moment_lumping = true;
-  else if (mass == "consistent") spec.lumped = false;
+  else if (mass == "consistent") spec.lumped = false, spec.moment_lumping = true;
   else b["mass"].fail("unknown mass '" + mass + "', expected lumped, lumped_moments or consistent");
   return spec;
 }

@@ -54,10 +54,11 @@ struct BodySpec {
   std::vector<ReferenceEntry> reference;  // empty: free
   long modes = 0;
   double max_frequency_hz = 0.0;
-  bool lumped = true;
-  // mass: lumped_moments: lumped masses moved between nodes so that the body's
-  // mass, first and second moments are exact (mass_lumping.h).
-  bool moment_lumping = false;
+  bool lumped = true;  // false (mass: consistent): consistent mass in the eigenproblem
+  // mass: lumped_moments (default) and consistent: the nodal masses (/mass/nodal,
+  // the invariants) moved between nodes so that the body's mass, first and second
+  // moments are exact (mass_lumping.h); with lumped_moments also in the eigenproblem.
+  bool moment_lumping = true;
   std::vector<std::string> input_files;  // the YAML and every file it uses (for the SHA-256)
 };
 

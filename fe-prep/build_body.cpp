@@ -240,7 +240,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   AssembledSystem sys;
   assemble(comm, mesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
   // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
-  // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal.
+  // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
+  // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
   if (spec.moment_lumping) {
     const long n = mesh.nodeCount();
     Eigen::VectorXd m0(n);
@@ -263,7 +264,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     res.lumping_min_ratio = ml.min_ratio;
     if (ml.applied) {
       const Eigen::VectorXd dm = ml.masses - m0;
-      addNodalTranslationalMass(comm, mesh, map, dm, sys.M);
+      if (spec.lumped) addNodalTranslationalMass(comm, mesh, map, dm, sys.M);
       for (long k = 0; k < n; ++k) sys.lumped.segment<3>(6 * k).array() += dm(k);
     }
   }
@@ -316,9 +317,20 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   }
   const RigidProperties rp =
       spec.shell ? shellProperties(mesh, spec.shell->laminate) : beamProperties(mesh, spec.beam->Ms, kSectionX2);
-  body.mass = rp.mass;
-  body.center_of_mass = rp.centerOfMass();
-  body.inertia_tensor = rp.inertiaAboutOrigin();
+  // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
+  // The exact continuum values go beside it when they differ (row-sum lumping,
+  // a moment correction that could not be applied, an asymmetric laminate whose
+  // mass-stiffness coupling the nodal masses cannot carry).
+  setRigidPropertiesFromLumpedMasses(body);
+  body.exact_mass = rp.mass;
+  body.exact_center_of_mass = rp.centerOfMass();
+  body.exact_inertia_tensor = rp.inertiaAboutOrigin();
+  const double size = std::max(mesh.characteristicLength(), 1e-12);
+  body.has_exact_inertia =
+      std::abs(body.mass - rp.mass) > 1e-12 * rp.mass ||
+      (body.center_of_mass - body.exact_center_of_mass).norm() > 1e-12 * size ||
+      (body.inertia_tensor - body.exact_inertia_tensor).cwiseAbs().maxCoeff() >
+          1e-12 * body.exact_inertia_tensor.cwiseAbs().maxCoeff();
   return res;
 }
 
