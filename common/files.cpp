@@ -1,13 +1,24 @@
 #include "common/files.h"
 
+#include <fcntl.h>
 #include <openssl/evp.h>
+#include <sys/random.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "common/input.h"
+#include "common/termination.h"
 
 namespace fc {
 
@@ -22,9 +33,25 @@ std::string sha256Hex(const std::string& data) {
   return os.str();
 }
 
+namespace {
+std::mutex g_inputs_mutex;
+std::vector<std::string> g_inputs;
+}  // namespace
+
+void recordInputFile(const std::string& path) {
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  if (std::find(g_inputs.begin(), g_inputs.end(), path) == g_inputs.end()) g_inputs.push_back(path);
+}
+
+std::vector<std::string> inputFilesRead() {
+  std::lock_guard<std::mutex> lock(g_inputs_mutex);
+  return g_inputs;
+}
+
 std::string readTextFile(const std::string& path) {
+  recordInputFile(path);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open " + path);
+  if (!in) throw std::runtime_error("cannot open " + path + ": " + osReason(errno));
   std::ostringstream os;
   os << in.rdbuf();
   return os.str();
@@ -39,21 +66,118 @@ std::string sha256Files(const std::vector<std::string>& paths) {
   return sha256Hex(all);
 }
 
-void writeFileAtomic(const std::string& path, const std::string& content) {
-  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-    out << content;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write " + tmp);
+std::string osReason(int err) { return std::strerror(err); }
+
+std::string temporaryNameFor(const std::string& final_path) {
+  static const char alphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  unsigned char bytes[12];
+  std::size_t got = 0;
+  while (got < sizeof bytes) {
+    const ssize_t n = getrandom(bytes + got, sizeof bytes - got, 0);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error("cannot draw a random temporary name: " + osReason(errno));
     }
+    got += static_cast<std::size_t>(n);
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot rename " + tmp + " to " + path);
+  std::string name = final_path + ".tmp-";
+  for (unsigned char b : bytes) name += alphabet[b % (sizeof alphabet - 1)];
+  return name;
+}
+
+namespace {
+
+// Opens `path` for fsync without following a link; O_RDONLY suffices on Linux.
+void fsyncOpen(const std::string& path, int flags, const char* what) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot open ") + what + " " + path + " to sync it: " +
+                             osReason(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  // EINVAL: the file system does not support syncing (e.g. some pseudo-fs); not an error.
+  if (rc != 0 && err != EINVAL)
+    throw std::runtime_error(std::string("cannot sync ") + what + " " + path + ": " + osReason(err));
+}
+
+}  // namespace
+
+void fsyncFile(const std::string& path) { fsyncOpen(path, O_RDONLY | O_NOFOLLOW, "file"); }
+
+void fsyncDirectoryOf(const std::string& path) {
+  fsyncOpen(directoryOf(path), O_RDONLY | O_DIRECTORY, "directory");
+}
+
+void writeFileAtomic(const std::string& path, const std::string& content) {
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 8 && fd < 0; ++attempt) {
+    tmp = temporaryNameFor(path);
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0) throw std::runtime_error("cannot create " + tmp + ": " + osReason(errno));
+  TemporaryRegistration reg(tmp);
+  auto fail = [&](const std::string& what, int err) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(what + ": " + osReason(err) + " (" + path + " left unchanged)");
+  };
+  const char* p = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("cannot write " + tmp, errno);
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL) fail("cannot sync " + tmp, errno);
+  if (::close(fd) != 0) {
+    fd = -1;
+    fail("cannot close " + tmp, errno);
+  }
+  fd = -1;
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    fail("cannot rename " + tmp + " to " + path, errno);
+  reg.release();
+  fsyncDirectoryOf(path);
+}
+
+void checkOutputWritable(const std::string& output) {
+  if (output.empty()) throw std::runtime_error("the output path is empty");
+  struct stat st {};
+  if (::stat(output.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    throw std::runtime_error("cannot write " + output + ": it is a directory");
+  const std::string dir = directoryOf(output);
+  if (::stat(dir.c_str(), &st) != 0)
+    throw std::runtime_error("cannot write " + output + ": directory " + dir + ": " +
+                             osReason(errno));
+  if (!S_ISDIR(st.st_mode))
+    throw std::runtime_error("cannot write " + output + ": " + dir + " is not a directory");
+  // A probe file tells the truth where access(2) does not (root, read-only mounts, ACLs).
+  const std::string probe = temporaryNameFor(output);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw std::runtime_error("cannot write " + output + ": cannot create a file in " + dir + ": " +
+                             osReason(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void checkOutputIsNotAnInput(const std::string& output, const std::vector<std::string>& inputs) {
+  struct stat out {};
+  if (::stat(output.c_str(), &out) != 0) return;  // no such file yet: cannot be an input
+  for (const auto& in : inputs) {
+    struct stat st {};
+    if (::stat(in.c_str(), &st) != 0) continue;
+    if (st.st_dev == out.st_dev && st.st_ino == out.st_ino)
+      throw InputError(output, 0, 0, "",
+                       "the output file is the input file " + in +
+                           "; writing it would destroy that input: choose another output path");
   }
 }
 

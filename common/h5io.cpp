@@ -1,12 +1,17 @@
 #include "common/h5io.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <sstream>
 
 #include "common/dataset_docs.h"
+#include "common/files.h"
+#include "common/termination.h"
 #include "common/version.h"
 
 namespace fc {
@@ -14,10 +19,45 @@ namespace fc {
 namespace {
 
 // HDF5 prints its error stack by default; we report errors ourselves.
+// H5dont_atexit: after a failed close (a full disk) HDF5 1.10's own exit-time
+// cleanup dereferences the half-closed file and segfaults; every file we write is
+// closed explicitly (AtomicH5Writer::commit), so that cleanup has nothing to do.
 struct SilenceHdf5 {
-  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+  SilenceHdf5() {
+    H5dont_atexit();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
 };
 const SilenceHdf5 silence_hdf5;
+
+// The most specific description on HDF5's current error stack, e.g. the sec2
+// driver's "... errno = 28, error message = 'No space left on device'": the OS
+// reason a write failed, which HDF5's own return codes do not carry.
+herr_t collectReason(unsigned n, const H5E_error2_t* err, void* data) {
+  auto* out = static_cast<std::string*>(data);
+  const std::string desc = err->desc ? err->desc : "";
+  // The innermost (n == 0) entry is the most specific; keep one naming errno if any.
+  if (out->find("errno") == std::string::npos &&
+      (n == 0 || desc.find("errno") != std::string::npos))
+    *out = desc;
+  return 0;
+}
+
+}  // namespace
+
+std::string hdf5ErrorReason() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, collectReason, &reason);
+  const auto pos = reason.find("error message = '");
+  if (pos != std::string::npos) {
+    const auto start = pos + 17;
+    const auto end = reason.find('\'', start);
+    reason = reason.substr(start, end == std::string::npos ? std::string::npos : end - start);
+  }
+  return reason.empty() ? std::string() : " (" + reason + ")";
+}
+
+namespace {
 
 // Owns one HDF5 identifier and closes it with the matching H5xclose.
 class Handle {
@@ -53,7 +93,7 @@ void ensureGroups(hid_t file, const std::string& path, const std::string& fname)
     cur += "/" + part;
     if (H5Lexists(file, cur.c_str(), H5P_DEFAULT) > 0) continue;
     Handle g(H5Gcreate2(file, cur.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    if (!g.ok()) throw H5Error(fname + ": cannot create group " + cur);
+    if (!g.ok()) throw H5Error(fname + ": cannot create group " + cur + hdf5ErrorReason());
   }
 }
 
@@ -68,24 +108,36 @@ void writeRaw(hid_t file, const std::string& fname, const std::string& path, hid
   Handle dset(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                          H5P_DEFAULT),
               H5Dclose);
-  if (!dset.ok()) throw H5Error(fname + ": cannot create dataset " + path);
+  if (!dset.ok()) throw H5Error(fname + ": cannot create dataset " + path + hdf5ErrorReason());
   if (H5Dwrite(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw H5Error(fname + ": cannot write dataset " + path);
+    throw H5Error(fname + ": cannot write dataset " + path + hdf5ErrorReason());
 }
 
 }  // namespace
 
 H5File::H5File(const std::string& path, Mode mode) : path_(path) {
   if (mode == Mode::Read) {
+    recordInputFile(path);
     id_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (id_ < 0) throw H5Error(path + ": cannot open as an HDF5 file (missing or not HDF5)");
-  } else {
+  } else if (mode == Mode::Create) {
     id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (id_ < 0) throw H5Error(path + ": cannot create HDF5 file");
+    if (id_ < 0) throw H5Error(path + ": cannot create HDF5 file" + hdf5ErrorReason());
+  } else {
+    // O_CREAT|O_EXCL underneath: fails on an existing file or link, never follows one.
+    id_ = H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+    if (id_ < 0) throw H5Error(path + ": cannot create HDF5 file" + hdf5ErrorReason());
   }
 }
 
 H5File::~H5File() { close(); }
+
+H5File H5File::adopt(hid_t id, const std::string& path) {
+  H5File f;
+  f.id_ = id;
+  f.path_ = path;
+  return f;
+}
 
 H5File::H5File(H5File&& o) noexcept : id_(o.id_), path_(std::move(o.path_)) { o.id_ = -1; }
 
@@ -104,6 +156,23 @@ void H5File::close() {
     H5Fclose(id_);
     id_ = -1;
   }
+}
+
+void H5File::closeChecked() {
+  if (id_ < 0) return;
+  // Objects still open would keep the file open past H5Fclose, hiding its errors.
+  const ssize_t open_objects = H5Fget_obj_count(id_, H5F_OBJ_ALL | H5F_OBJ_LOCAL);
+  if (H5Fflush(id_, H5F_SCOPE_GLOBAL) < 0) {
+    const std::string reason = hdf5ErrorReason();
+    close();
+    throw H5Error(path_ + ": cannot flush the file" + reason);
+  }
+  const herr_t rc = H5Fclose(id_);
+  id_ = -1;
+  if (rc < 0) throw H5Error(path_ + ": cannot close the file" + hdf5ErrorReason());
+  if (open_objects > 1)
+    throw H5Error(path_ + ": " + std::to_string(open_objects - 1) +
+                  " HDF5 objects were still open at close (a bug in the writer)");
 }
 
 bool H5File::exists(const std::string& object_path) const {
@@ -357,10 +426,127 @@ int H5File::checkFormat(const std::string& kind, int max_version) const {
   return version;
 }
 
-AtomicH5Writer::AtomicH5Writer(const std::string& final_path)
-    : final_path_(final_path),
-      tmp_path_(final_path + ".tmp-" + std::to_string(static_cast<long>(getpid()))),
-      file_(tmp_path_, H5File::Mode::Create) {}
+namespace {
+
+// Visits every dataset and attribute of type float and throws naming the first
+// non-finite value: no tool writes NaN or inf, whatever path produced it.
+struct FiniteCheck {
+  std::string file, bad;
+};
+
+std::string firstNonFinite(const std::vector<double>& v) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i])) {
+      std::ostringstream os;
+      os << v[i] << " at flat index " << i;
+      return os.str();
+    }
+  return "";
+}
+
+herr_t checkAttributeFinite(hid_t loc, const char* name, const H5A_info_t*, void* data) {
+  auto* c = static_cast<FiniteCheck*>(data);
+  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
+  if (!attr.ok()) return 0;
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_FLOAT) return 0;
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> v(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (n > 0 && H5Aread(attr.get(), H5T_NATIVE_DOUBLE, v.data()) >= 0) {
+    const std::string bad = firstNonFinite(v);
+    if (!bad.empty()) {
+      c->bad = std::string("attribute '") + name + "' is " + bad;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+herr_t checkObjectFinite(hid_t file, const char* name, const H5O_info_t* info, void* data) {
+  auto* c = static_cast<FiniteCheck*>(data);
+  const std::string where = std::string("/") + (std::string(name) == "." ? "" : name);
+  Handle obj(H5Oopen(file, name, H5P_DEFAULT), H5Oclose);
+  if (!obj.ok()) return 0;
+  hsize_t idx = 0;
+  if (H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, &idx, checkAttributeFinite, c) > 0) {
+    c->bad = where + ": " + c->bad;
+    return 1;
+  }
+  if (info->type != H5O_TYPE_DATASET) return 0;
+  Handle type(H5Dget_type(obj.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_FLOAT) return 0;
+  Handle space(H5Dget_space(obj.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  // In slabs of rows, so that a large (streamed) dataset is not loaded whole.
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  if (n <= 0) return 0;
+  const hsize_t row = rank > 0 ? static_cast<hsize_t>(n) / dims[0] : 1;
+  const hsize_t rows_per_slab = rank > 0 ? std::max<hsize_t>(1, (1u << 20) / std::max<hsize_t>(row, 1)) : 1;
+  const hsize_t total_rows = rank > 0 ? dims[0] : 1;
+  for (hsize_t r0 = 0; r0 < total_rows; r0 += rows_per_slab) {
+    const hsize_t nr = std::min(rows_per_slab, total_rows - r0);
+    std::vector<double> v(static_cast<std::size_t>(nr * row));
+    herr_t rc;
+    if (rank > 0) {
+      std::vector<hsize_t> start(dims.size(), 0), count = dims;
+      start[0] = r0;
+      count[0] = nr;
+      Handle fspace(H5Scopy(space.get()), H5Sclose);
+      H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+      Handle mspace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
+      rc = H5Dread(obj.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, v.data());
+    } else {
+      rc = H5Dread(obj.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    }
+    if (rc < 0) {
+      c->bad = where + ": cannot be read back" + hdf5ErrorReason();
+      return 1;
+    }
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i])) {
+        std::ostringstream os;
+        os << where << " holds " << v[i] << " at flat index " << (r0 * row + i);
+        c->bad = os.str();
+        return 1;
+      }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void checkAllFinite(const H5File& f) {
+  FiniteCheck c{f.path(), ""};
+#if H5_VERSION_GE(1, 12, 0)
+  H5Ovisit3(f.id(), H5_INDEX_NAME, H5_ITER_INC, checkObjectFinite, &c, H5O_INFO_BASIC);
+#else
+  H5Ovisit2(f.id(), H5_INDEX_NAME, H5_ITER_INC, checkObjectFinite, &c, H5O_INFO_BASIC);
+#endif
+  if (!c.bad.empty())
+    throw H5Error(f.path() + ": refusing to write a non-finite number: " + c.bad);
+}
+
+AtomicH5Writer::AtomicH5Writer(const std::string& final_path) : final_path_(final_path) {
+  for (int attempt = 0;; ++attempt) {
+    tmp_path_ = temporaryNameFor(final_path);
+    const hid_t id = H5Fcreate(tmp_path_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+    if (id >= 0) {
+      file_ = H5File::adopt(id, tmp_path_);
+      break;
+    }
+    const std::string reason = hdf5ErrorReason();
+    // EEXIST: a name collision (or a planted file/link, which is not ours to
+    // remove): draw another name. Any other failure happened after O_EXCL created
+    // the file (e.g. no space for the superblock): it is ours, remove it.
+    if (reason.find("File exists") != std::string::npos && attempt < 8) continue;
+    if (reason.find("File exists") == std::string::npos) std::remove(tmp_path_.c_str());
+    throw H5Error("cannot create a temporary file beside " + final_path + ": " + tmp_path_ + reason);
+  }
+  registration_ = std::make_unique<TemporaryRegistration>(tmp_path_);
+}
 
 AtomicH5Writer::~AtomicH5Writer() {
   if (!committed_) {
@@ -371,13 +557,25 @@ AtomicH5Writer::~AtomicH5Writer() {
 
 void AtomicH5Writer::commit() {
   annotateDatasets(file_);
-  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
-  file_.close();
+  checkAllFinite(file_);
+  file_.closeChecked();
+  fsyncFile(tmp_path_);
+  // Read back what the library says it wrote: a truncated file does not open.
+  {
+    const hid_t check = H5Fopen(tmp_path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (check < 0)
+      throw H5Error(tmp_path_ + ": the file just written does not read back as HDF5" +
+                    hdf5ErrorReason() + "; " + final_path_ + " left unchanged");
+    H5Fclose(check);
+  }
   if (std::rename(tmp_path_.c_str(), final_path_.c_str()) != 0) {
+    const int err = errno;
     std::remove(tmp_path_.c_str());
-    throw H5Error("cannot rename " + tmp_path_ + " to " + final_path_);
+    throw H5Error("cannot rename " + tmp_path_ + " to " + final_path_ + ": " + osReason(err));
   }
   committed_ = true;
+  registration_.reset();
+  fsyncDirectoryOf(final_path_);
 }
 
 void writeProvenance(H5File& f, const std::string& format, const std::string& tool,

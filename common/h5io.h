@@ -2,14 +2,18 @@
 // HDF5 reading and writing of the layouts in contracts.md, through RAII handles.
 // Matrices are stored row-major (HDF5's own order), float64. Every file carries a
 // `format` attribute ("section/1", "flexbody/1", "results/1") checked on read.
-// Files are written atomically: AtomicH5Writer writes NAME.tmp-PID and renames it
-// on commit(), so a crash never leaves a half-written NAME behind.
+// Files are written atomically: AtomicH5Writer writes an exclusively created
+// NAME.tmp-RANDOM, checks it to the close and renames it on commit(), so a crash,
+// a signal or a full disk never leaves a half-written NAME behind.
 #include <hdf5.h>
 
 #include <Eigen/Dense>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/termination.h"
 
 namespace fc {
 
@@ -20,7 +24,8 @@ class H5Error : public std::runtime_error {
 
 class H5File {
  public:
-  enum class Mode { Read, Create };
+  // Create truncates; CreateExclusive fails if anything (even a link) is at the path.
+  enum class Mode { Read, Create, CreateExclusive };
   H5File() = default;
   H5File(const std::string& path, Mode mode);
   ~H5File();
@@ -29,7 +34,11 @@ class H5File {
   H5File(H5File&& o) noexcept;
   H5File& operator=(H5File&& o) noexcept;
 
-  void close();
+  // Takes ownership of an open file identifier.
+  static H5File adopt(hid_t id, const std::string& path);
+  void close();  // errors ignored (for destructors and error paths)
+  // Flushes and closes, throwing H5Error with the OS reason on failure.
+  void closeChecked();
   bool isOpen() const { return id_ >= 0; }
   hid_t id() const { return id_; }
   const std::string& path() const { return path_; }
@@ -77,8 +86,12 @@ class H5File {
   std::string path_;
 };
 
-// Writes to a temporary name beside `final_path`; commit() closes and renames.
-// Destroyed without commit(), it removes the temporary file.
+// Writes to a temporary beside `final_path` (created exclusively under a random
+// name, registered with the termination handler). commit() annotates, refuses
+// non-finite numbers, flushes and closes with every error checked, fsyncs, reads
+// the file back, renames it onto final_path and fsyncs the directory. Destroyed
+// without a successful commit(), it removes the temporary: final_path keeps its
+// previous content.
 class AtomicH5Writer {
  public:
   explicit AtomicH5Writer(const std::string& final_path);
@@ -92,8 +105,15 @@ class AtomicH5Writer {
  private:
   std::string final_path_, tmp_path_;
   H5File file_;
+  std::unique_ptr<TemporaryRegistration> registration_;
   bool committed_ = false;
 };
+
+// Throws H5Error naming the dataset or attribute when a float one holds NaN/inf.
+void checkAllFinite(const H5File& f);
+
+// " (OS or HDF5 reason)" from HDF5's current error stack, or "" when none.
+std::string hdf5ErrorReason();
 
 // Root attributes every output carries: format, units, tool, version, input hash.
 void writeProvenance(H5File& f, const std::string& format, const std::string& tool,

@@ -9,6 +9,7 @@
 #include "common/files.h"
 #include "common/input.h"
 #include "common/flexbody.h"
+#include "common/termination.h"
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
@@ -50,10 +51,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fe-prep: error: SLEPc/PETSc initialisation failed\n");
     return 1;
   }
+  // After PETSc, which installs its own handlers: a termination signal removes
+  // the temporary being written and exits, on every rank. No partial output.
+  fc::installTerminationHandlers("fe-prep", fc::TerminationPolicy::ExitNow);
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   auto run = [&] {
+    // Refuse a bad output path before any computing, not after.
+    fc::checkOutputIsNotAnInput(output, {input});
+    if (rank == 0) fc::checkOutputWritable(output);
     const fc::feprep::BodySpec spec = fc::feprep::readBodySpec(input);
+    fc::checkOutputIsNotAnInput(output, spec.input_files);
+    fc::checkOutputIsNotAnInput(output, fc::inputFilesRead());
     fc::feprep::BuildOptions opt;
     opt.quiet = quiet;
     const fc::feprep::BuildResult r = fc::feprep::buildFlexBody(PETSC_COMM_WORLD, spec, opt);

@@ -10,6 +10,7 @@
 #include "common/files.h"
 #include "common/input.h"
 #include "common/progress.h"
+#include "common/termination.h"
 #include "common/version.h"
 #include "section-prep/cross_section.h"
 #include "section-prep/section_mesher.h"
@@ -39,8 +40,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("section-prep ") + fc::version());
   fc::addInspectOption(app, "section-prep");
   CLI11_PARSE(app, argc, argv);
+  // A signal removes the temporary being written and exits: no partial output.
+  fc::installTerminationHandlers("section-prep", fc::TerminationPolicy::ExitNow);
 
   return fc::guardedMain("section-prep", [&]() {
+    // Refuse a bad output path before any computing, not after.
+    fc::checkOutputIsNotAnInput(output, {input});
+    fc::checkOutputWritable(output);
     using namespace fc::section;
     SectionMesh mesh;
     AnalysisOptions opt;
@@ -55,6 +61,8 @@ int main(int argc, char** argv) {
       mesh = std::move(m.mesh);
       opt.timoshenko = true;  // always: the Timoshenko matrix is part of the output contract
     }
+    // Every file read so far (includes, mesh files) is an input the output must not replace.
+    fc::checkOutputIsNotAnInput(output, fc::inputFilesRead());
     fc::Progress progress("section-prep", 1.0, quiet);
     opt.progress = [&](const std::string& phase, double f) { progress.update(f, phase); };
     const auto t0 = std::chrono::steady_clock::now();

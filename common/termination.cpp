@@ -1,0 +1,143 @@
+#include "common/termination.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+
+namespace fc {
+
+namespace {
+
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGALRM, SIGXCPU, SIGPIPE};
+constexpr int kSignalCount = sizeof(kSignals) / sizeof(kSignals[0]);
+
+// Everything the handler touches is static storage and lock-free atomics: a
+// signal handler may only call async-signal-safe functions (unlink, write, _exit).
+std::atomic<int> g_signal{0};
+std::atomic<int> g_policy{static_cast<int>(TerminationPolicy::ExitNow)};
+char g_prefix[128] = "flexcomp";
+
+constexpr int kSlots = 32;
+constexpr std::size_t kPathMax = 4096;
+struct Slot {
+  std::atomic<int> state{0};  // 0 free, 1 being filled, 2 holds a path to remove
+  char path[kPathMax];
+};
+Slot g_slots[kSlots];
+
+const char* nameOf(int sig) {
+  switch (sig) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    case SIGQUIT: return "SIGQUIT";
+    case SIGALRM: return "SIGALRM";
+    case SIGXCPU: return "SIGXCPU";
+    case SIGPIPE: return "SIGPIPE";
+    default: return "a signal";
+  }
+}
+
+void writeAll(const char* s) {
+  std::size_t n = std::strlen(s);
+  while (n > 0) {
+    const ssize_t w = ::write(STDERR_FILENO, s, n);
+    if (w <= 0) return;  // stderr gone (e.g. the SIGPIPE case): nothing to tell
+    s += w;
+    n -= static_cast<std::size_t>(w);
+  }
+}
+
+[[noreturn]] void removeTemporariesAndExit(int sig, const char* what) {
+  for (auto& slot : g_slots)
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  writeAll(g_prefix);
+  writeAll(": interrupted by ");
+  writeAll(nameOf(sig));
+  writeAll(what);
+  ::_exit(terminationExitCode(sig));
+}
+
+extern "C" void onTerminationSignal(int sig) {
+  int expected = 0;
+  const bool first = g_signal.compare_exchange_strong(expected, sig);
+  if (first && g_policy.load() == static_cast<int>(TerminationPolicy::Record)) return;
+  removeTemporariesAndExit(sig, first ? "; no output written\n"
+                                      : " (second termination signal); stopped at once\n");
+}
+
+}  // namespace
+
+void installTerminationHandlers(const std::string& tool, TerminationPolicy policy) {
+  std::strncpy(g_prefix, tool.c_str(), sizeof g_prefix - 1);
+  g_prefix[sizeof g_prefix - 1] = '\0';
+  g_policy.store(static_cast<int>(policy));
+  struct sigaction sa {};
+  sa.sa_handler = onTerminationSignal;
+  // Block the other termination signals while one is handled: the handler runs once.
+  sigemptyset(&sa.sa_mask);
+  for (int s : kSignals) sigaddset(&sa.sa_mask, s);
+  sa.sa_flags = SA_RESTART;
+  for (int s : kSignals) {
+    struct sigaction old {};
+    sigaction(s, nullptr, &old);
+    // `nohup` asks for SIGHUP to be ignored: respect it. (INT and QUIT are not
+    // checked: a non-interactive shell ignores them in background jobs, yet a
+    // batch system's `kill -INT` must still stop the tool cleanly.)
+    if (s == SIGHUP && old.sa_handler == SIG_IGN) continue;
+    sigaction(s, &sa, nullptr);
+  }
+}
+
+int terminationSignal() { return g_signal.load(); }
+
+std::string signalName(int sig) { return nameOf(sig); }
+
+void throwIfTerminated() {
+  if (const int s = g_signal.load()) throw Terminated(s);
+}
+
+void resetTerminationForTests() { g_signal.store(0); }
+void raiseTerminationForTests(int sig) { g_signal.store(sig); }
+
+const int* terminationSignals(int* count) {
+  if (count) *count = kSignalCount;
+  return kSignals;
+}
+
+TemporaryRegistration::TemporaryRegistration(const std::string& path) {
+  if (path.size() >= kPathMax) throw std::runtime_error("temporary path too long: " + path);
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (g_slots[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+      g_slots[i].state.store(2);
+      slot_ = i;
+      return;
+    }
+  }
+  throw std::runtime_error("too many temporary files open at once (" + std::to_string(kSlots) +
+                           ") to register " + path);
+}
+
+TemporaryRegistration::~TemporaryRegistration() { release(); }
+
+TemporaryRegistration& TemporaryRegistration::operator=(TemporaryRegistration&& o) noexcept {
+  if (this != &o) {
+    release();
+    slot_ = o.slot_;
+    o.slot_ = -1;
+  }
+  return *this;
+}
+
+void TemporaryRegistration::release() {
+  if (slot_ >= 0) {
+    g_slots[slot_].state.store(0);
+    slot_ = -1;
+  }
+}
+
+}  // namespace fc

@@ -1,0 +1,253 @@
+// Robust output: termination signals, write failures (a full disk), planted links,
+// output paths that are inputs, non-finite numbers. Each fault is real: signals
+// are raised in a forked child, write failures come from RLIMIT_FSIZE (the kernel
+// refuses the write with EFBIG, exactly as a full disk refuses it with ENOSPC).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "common/files.h"
+#include "common/h5io.h"
+#include "common/input.h"
+#include "common/termination.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::path(::testing::TempDir()) / ("robust-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::vector<std::string> listDir(const fs::path& d) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(d)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Runs body in a child process; returns its wait status.
+template <class F>
+int inChild(F body) {
+  fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    body();
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+void writeGood(const std::string& path, double value) {
+  fc::AtomicH5Writer w(path);
+  w.file().writeScalar("/value", value);
+  w.commit();
+}
+
+}  // namespace
+
+// --- termination signals --------------------------------------------------------
+
+TEST(Termination, EverySignalRemovesRegisteredTemporariesAndExits128PlusSignal) {
+  int n = 0;
+  const int* sigs = fc::terminationSignals(&n);
+  ASSERT_EQ(n, 7);  // INT, TERM, HUP, QUIT, ALRM, XCPU, PIPE
+  for (int i = 0; i < n; ++i) {
+    const int sig = sigs[i];
+    const fs::path d = freshDir("sig" + std::to_string(sig));
+    const std::string out = (d / "out.h5").string();
+    const int status = inChild([&] {
+      fc::installTerminationHandlers("test", fc::TerminationPolicy::ExitNow);
+      fc::AtomicH5Writer w(out);  // registers its temporary
+      w.file().writeScalar("/x", 1.0);
+      ::raise(sig);
+      _exit(0);  // not reached: the handler exits
+    });
+    ASSERT_TRUE(WIFEXITED(status)) << fc::signalName(sig);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig) << fc::signalName(sig);
+    EXPECT_TRUE(listDir(d).empty()) << fc::signalName(sig) << " left " << listDir(d).size()
+                                    << " file(s)";
+  }
+}
+
+TEST(Termination, RecordPolicyRecordsFirstSignalAndExitsOnSecond) {
+  const fs::path d = freshDir("record");
+  const std::string out = (d / "res.h5").string();
+  const int status = inChild([&] {
+    fc::installTerminationHandlers("test", fc::TerminationPolicy::Record);
+    fc::AtomicH5Writer w(out);
+    ::raise(SIGHUP);
+    // The loop polls: the first signal is only recorded.
+    if (fc::terminationSignal() != SIGHUP) _exit(3);
+    try {
+      fc::throwIfTerminated();
+      _exit(4);
+    } catch (const fc::Terminated& e) {
+      if (e.signal() != SIGHUP || std::string(e.what()) != "interrupted by SIGHUP") _exit(5);
+    }
+    ::raise(SIGTERM);  // a second one stops at once
+    _exit(6);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_TRUE(listDir(d).empty());
+}
+
+TEST(Termination, RegistrationIsReleasedAfterCommit) {
+  const fs::path d = freshDir("release");
+  const std::string out = (d / "kept.h5").string();
+  const int status = inChild([&] {
+    fc::installTerminationHandlers("test", fc::TerminationPolicy::ExitNow);
+    writeGood(out, 1.0);  // committed: no longer a temporary
+    ::raise(SIGTERM);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"kept.h5"});
+}
+
+// --- write failures -------------------------------------------------------------
+
+TEST(AtomicWrite, FailedHdf5WriteKeepsPreviousFileAndRemovesTemporary) {
+  const fs::path d = freshDir("efbig-h5");
+  const std::string out = (d / "body.h5").string();
+  writeGood(out, 42.0);
+  const std::string before = fc::readTextFile(out);
+  const int status = inChild([&] {
+    ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG
+    struct rlimit lim {64 * 1024, 64 * 1024};
+    setrlimit(RLIMIT_FSIZE, &lim);
+    try {
+      fc::AtomicH5Writer w(out);
+      w.file().writeMatrix("/big", Eigen::MatrixXd::Ones(200, 200));  // 320 kB
+      w.commit();
+    } catch (const fc::H5Error& e) {
+      // The OS reason reaches the message.
+      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
+    }
+    _exit(9);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"body.h5"});
+  EXPECT_EQ(fc::readTextFile(out), before);
+  fc::H5File f(out, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.readScalar("/value"), 42.0);
+}
+
+TEST(AtomicWrite, FailedTextWriteKeepsPreviousFileAndRemovesTemporary) {
+  const fs::path d = freshDir("efbig-txt");
+  const std::string out = (d / "a.txt").string();
+  fc::writeFileAtomic(out, "previous");
+  const int status = inChild([&] {
+    ::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit lim {1024, 1024};
+    setrlimit(RLIMIT_FSIZE, &lim);
+    try {
+      fc::writeFileAtomic(out, std::string(100000, 'x'));
+    } catch (const std::runtime_error& e) {
+      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
+    }
+    _exit(9);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"a.txt"});
+  EXPECT_EQ(fc::readTextFile(out), "previous");
+}
+
+TEST(AtomicWrite, TemporaryNamesAreUnpredictableAndNeverFollowALink) {
+  const std::string a = fc::temporaryNameFor("x.h5"), b = fc::temporaryNameFor("x.h5");
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a.size(), std::string("x.h5.tmp-").size() + 12);
+  // Exclusive creation refuses a planted link and leaves its target alone.
+  const fs::path d = freshDir("link");
+  { std::ofstream(d / "victim") << "precious"; }
+  fs::create_symlink(d / "victim", d / "planted.h5");
+  EXPECT_THROW(fc::H5File((d / "planted.h5").string(), fc::H5File::Mode::CreateExclusive),
+               fc::H5Error);
+  EXPECT_EQ(fc::readTextFile((d / "victim").string()), "precious");
+}
+
+TEST(AtomicWrite, NonFiniteNumbersAreRefusedBeforeTheRename) {
+  const fs::path d = freshDir("nan");
+  const std::string out = (d / "s.h5").string();
+  writeGood(out, 1.0);
+  for (double bad : {std::nan(""), double(INFINITY), -double(INFINITY)}) {
+    fc::AtomicH5Writer w(out);
+    Eigen::MatrixXd m = Eigen::MatrixXd::Ones(3, 4);
+    m(2, 1) = bad;
+    w.file().writeMatrix("/stiffness/timoshenko", m);
+    try {
+      w.commit();
+      ADD_FAILURE() << "non-finite value accepted";
+    } catch (const fc::H5Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/stiffness/timoshenko"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("flat index 9"), std::string::npos) << e.what();
+    }
+  }
+  {
+    fc::AtomicH5Writer w(out);
+    w.file().writeScalar("/ok", 1.0);
+    w.file().setAttribute("/", "energy", std::nan(""));
+    EXPECT_THROW(w.commit(), fc::H5Error);
+  }
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"s.h5"});
+  fc::H5File f(out, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.readScalar("/value"), 1.0);
+}
+
+// --- output path checks ---------------------------------------------------------
+
+TEST(OutputPath, AnOutputThatIsAnInputIsRefused) {
+  const fs::path d = freshDir("same");
+  const std::string in = (d / "in.yaml").string();
+  { std::ofstream(in) << "a: 1\n"; }
+  EXPECT_THROW(fc::checkOutputIsNotAnInput(in, {in}), fc::InputError);
+  // Another spelling, a symbolic link and a hard link all name the same file.
+  EXPECT_THROW(fc::checkOutputIsNotAnInput((d / "." / "in.yaml").string(), {in}), fc::InputError);
+  fs::create_symlink(in, d / "link.h5");
+  EXPECT_THROW(fc::checkOutputIsNotAnInput((d / "link.h5").string(), {in}), fc::InputError);
+  fs::create_hard_link(in, d / "hard.h5");
+  EXPECT_THROW(fc::checkOutputIsNotAnInput((d / "hard.h5").string(), {in}), fc::InputError);
+  EXPECT_NO_THROW(fc::checkOutputIsNotAnInput((d / "new.h5").string(), {in}));
+  try {
+    fc::checkOutputIsNotAnInput(in, {"missing.yaml", in});
+  } catch (const fc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would destroy that input"), std::string::npos);
+  }
+  EXPECT_EQ(fc::readTextFile(in), "a: 1\n");
+}
+
+TEST(OutputPath, FilesReadAreRecordedAsInputs) {
+  const fs::path d = freshDir("recorded");
+  const std::string in = (d / "m.yaml").string();
+  { std::ofstream(in) << "a: 1\n"; }
+  fc::InputNode::loadFile(in);
+  const auto all = fc::inputFilesRead();
+  EXPECT_NE(std::find(all.begin(), all.end(), in), all.end());
+}
+
+TEST(OutputPath, UnwritableLocationsAreReportedBeforeComputing) {
+  const fs::path d = freshDir("unwritable");
+  try {
+    fc::checkOutputWritable((d / "no" / "such" / "x.h5").string());
+    ADD_FAILURE();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("No such file or directory"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(fc::checkOutputWritable(d.string()), std::runtime_error);  // a directory
+  EXPECT_NO_THROW(fc::checkOutputWritable((d / "ok.h5").string()));
+  EXPECT_TRUE(listDir(d).empty());  // the probe is removed
+}
