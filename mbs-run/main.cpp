@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     if (t_end > 0) model.settings.t_end = t_end;
     if (rtol > 0) model.settings.rtol = rtol;
     if (integrator == "dopri5") model.settings.integrator = fc::mbs::IntegratorKind::DormandPrince;
-    if (integrator == "trbdf2") model.settings.integrator = fc::mbs::IntegratorKind::Bdf;
+    if (integrator == "trbdf2") model.settings.integrator = fc::mbs::IntegratorKind::TrBdf2;
     if (integrator == "auto") model.settings.integrator = fc::mbs::chooseIntegrator(model);
     // A named method is used throughout; auto may switch (Settings::switch_when_stiff).
     if (!integrator.empty())

@@ -120,7 +120,7 @@ struct Event {
   std::string label;
 };
 
-enum class IntegratorKind { Auto, DormandPrince, Bdf };
+enum class IntegratorKind { Auto, DormandPrince, TrBdf2 };
 
 struct Settings {
   double t_end = 1.0;
@@ -131,8 +131,8 @@ struct Settings {
   // Set when `integrator: auto` chose dopri5: the run switches to TR-BDF2 for
   // the rest of an event-free segment once Dormand-Prince's stiffness test
   // (Hairer's) finds it held at its stability boundary with steps below
-  // 3.25 / stiff_frequency (1.6 ms): TR-BDF2's accuracy-bound steps on the
-  // flexible SAR are ~2 ms at rtol 1e-4, so below that it wins.
+  // 3.25 / stiff_frequency (1.6 ms), where TR-BDF2's accuracy-bound steps
+  // are the longer ones (measurements in docs/mbs-run.md, "Cost").
   bool switch_when_stiff = false;
   double stiff_frequency = 2000.0;
   double max_step = -1.0;        // < 0: 10 output steps

@@ -408,7 +408,7 @@ void parseSimulation(const InputNode& s, Settings& st) {
   const std::string integ = s["integrator"].asString();
   if (integ == "auto") st.integrator = IntegratorKind::Auto;
   else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;
-  else if (integ == "trbdf2") st.integrator = IntegratorKind::Bdf;
+  else if (integ == "trbdf2") st.integrator = IntegratorKind::TrBdf2;
   else s["integrator"].fail("expected auto, dopri5 or trbdf2, got '" + integ + "'");
 }
 
@@ -487,7 +487,7 @@ IntegratorKind chooseIntegrator(const Model& m) {
   // stiffest modes (the SAR crank's 1 kHz modes with R1 locked), so which
   // modes are stiff is known only from the constrained motion; the run
   // measures it (Settings::switch_when_stiff, simulation.cpp).
-  return wmax > 2000.0 ? IntegratorKind::Bdf : IntegratorKind::DormandPrince;
+  return wmax > 2000.0 ? IntegratorKind::TrBdf2 : IntegratorKind::DormandPrince;
 }
 
 }  // namespace fc::mbs

@@ -8,6 +8,7 @@
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/flexible/flexible_inertia.h"
 #include "mbs-run/flexible/modal.h"
+#include "mbs-run/force_elements.h"
 #include "mbs-run/rigid_body.h"
 
 namespace fc::mbs {
@@ -108,7 +109,8 @@ void System::assembleConstraints(double t, const std::vector<BodyPose>& P) {
   c_.setZero(m);
   // While the active joints and their row counts are unchanged, Phi_v's
   // pattern is too: its values are written straight into the slots found
-  // when the pattern was built (setFromTriplets cost ~10 % of a SAR step).
+  // when the pattern was built (rebuilding it every evaluation is measurable:
+  // docs/mbs-run.md, "Cost").
   long sig = m;
   for (std::size_t j = 0; j < model_.joints.size(); ++j)
     sig = sig * 31 + (joints_[j].enabled ? constraintCount(model_.joints[j], joints_[j]) + 1 : 0);
@@ -185,94 +187,12 @@ void System::factorize() {
                              "(a mass matrix not positive definite, or non-finite state)");
 }
 
-namespace {
-// The velocity coordinates [rdot, omega', wdot] of a pose (zero for fixed bodies).
-VectorXd velocityOf(const BodyPose& b) {
-  VectorXd v(b.nv());
-  v << b.rdot, b.w, b.modal_rate;
-  return v;
-}
-}  // namespace
-
-void System::appliedForces(double t, const std::vector<BodyPose>& P, VectorXd& Q, double& dissipation,
-                           double& applied_power) const {
-  Q.setZero(model_.nv);
-  dissipation = 0.0;
-  applied_power = 0.0;
-  // Generalised forces J^T f of a global force at a point and J_w^T n of a
-  // global torque, J = [I, -A s~, A Psi], J_w = [0, A, A Theta].
-  auto addForceAt = [&](int body, const Vector3d& s0, const PointShapes& sh, const Vector3d& f) {
-    const Body& b = model_.bodies[body];
-    if (b.fixed) return;
-    Q.segment(b.dof_index, b.nv()) += attachedPoint(P[body], s0, sh.psi).J.transpose() * f;
-  };
-  auto addTorque = [&](int body, const PointShapes& sh, const Vector3d& n) {
-    const Body& b = model_.bodies[body];
-    if (b.fixed) return;
-    const Vector3d nb = P[body].A.transpose() * n;
-    Q.segment<3>(b.dof_index + 3) += nb;
-    if (b.modes > 0 && sh.theta.cols() == b.modes) Q.segment(b.dof_index + 6, b.modes) += sh.theta.transpose() * nb;
-  };
-  const PointShapes frame_only;
-  for (std::size_t f = 0; f < model_.forces.size(); ++f) {
-    if (!force_on_[f]) continue;
-    const ForceElement& fe = model_.forces[f];
-    switch (fe.type) {
-      case ForceType::Gravity:
-        for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
-          const Body& b = model_.bodies[k];
-          if (b.fixed) continue;
-          if (b.flex)
-            Q.segment(b.dof_index, b.nv()) += gravityForces(b.flex->inertia, P[k].A, P[k].modal, fe.vector);
-          else
-            addForceAt(static_cast<int>(k), b.com, frame_only, b.mass * fe.vector);
-        }
-        break;
-      case ForceType::RotationalSpringDamper: {
-        // Q = -M g^T with g = d(angle)/dv, the exact gradient of the angle
-        // the potential is a function of (constraints.h): the spring's power
-        // is exactly -dV/dt and the damper's exactly -c angle_dot^2, also
-        // with large modal rotations, where a torque M n through J_w =
-        // [0, A, A Theta] matched the angle only to first order in them. On
-        // rigid bodies with the joint assembled g^T is [0, -A_i^T n] and
-        // [0, A_j^T n]: the torques M n on i and -M n on j, as before.
-        const Joint& jt = model_.joints[fe.joint];
-        const BodyPose &bi = P[jt.body_i], &bj = P[jt.body_j];
-        Eigen::RowVectorXd gi, gj;
-        revoluteAngleJacobian(jt, bi, bj, gi, gj);
-        const double th = revoluteAngle(jt, joints_[fe.joint], bi, bj);
-        const double thd = gi.dot(velocityOf(bi)) + gj.dot(velocityOf(bj));
-        const double M = fe.torque.value(th) + fe.damping * thd;
-        const Body &body_i = model_.bodies[jt.body_i], &body_j = model_.bodies[jt.body_j];
-        if (!body_i.fixed) Q.segment(body_i.dof_index, body_i.nv()) -= M * gi.transpose();
-        if (!body_j.fixed) Q.segment(body_j.dof_index, body_j.nv()) -= M * gj.transpose();
-        dissipation += fe.damping * thd * thd;
-        break;
-      }
-      case ForceType::TranslationalSpringDamper: {
-        const Attached ai = attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi);
-        const Attached aj = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi);
-        const Vector3d vi = ai.xdot, vj = aj.xdot;
-        const Vector3d d = aj.x - ai.x;
-        const double L = d.norm();
-        if (L <= 0.0) break;  // direction undefined; the force is continuous only for L > 0
-        const Vector3d e = d / L;
-        const double Ld = e.dot(vj - vi);
-        const double F = fe.stiffness * (L - fe.free_length) + fe.damping * Ld;
-        addForceAt(fe.body_i, fe.point_i, fe.shapes_i, F * e);
-        addForceAt(fe.body_j, fe.point_j, fe.shapes_j, -F * e);
-        dissipation += fe.damping * Ld * Ld;
-        break;
-      }
-      case ForceType::ConstantForce:
-        addForceAt(fe.body_i, fe.point_i, fe.shapes_i, fe.vector);
-        break;
-      case ForceType::ConstantTorque:
-        addTorque(fe.body_i, frame_only, fe.vector);
-        applied_power += fe.vector.dot(P[fe.body_i].A * P[fe.body_i].w);
-        break;
-    }
-  }
+void System::appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) const {
+  sums.Q.setZero(model_.nv);
+  sums.dissipation = 0.0;
+  sums.applied_power = 0.0;
+  for (std::size_t f = 0; f < model_.forces.size(); ++f)
+    if (force_on_[f]) addForceElement(model_, model_.forces[f], P, joints_, ForceQuantity::ForcesAndPowers, sums);
 }
 
 void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
@@ -282,9 +202,11 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   assembleConstraints(t, P_);
   assembleMass(P_);
   factorize();
-  VectorXd Q;
-  double dissipation, applied;
-  appliedForces(t, P_, Q, dissipation, applied);
+  ForceSums forces;
+  appliedForces(P_, forces);
+  VectorXd& Q = forces.Q;
+  double& dissipation = forces.dissipation;
+  const double applied = forces.applied_power;
   const VectorXd v = y.segment(nq, nv);
   Q += Qv_;
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
@@ -390,38 +312,10 @@ Energies System::energies(double t, const VectorXd& y) const {
       e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);
     }
   }
-  for (std::size_t f = 0; f < model_.forces.size(); ++f) {
-    if (!force_on_[f]) continue;
-    const ForceElement& fe = model_.forces[f];
-    switch (fe.type) {
-      case ForceType::Gravity:
-        for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
-          const Body& b = model_.bodies[k];
-          if (b.fixed) continue;
-          if (b.flex) e.potential += gravityPotential(b.flex->inertia, P[k].r, P[k].A, P[k].modal, fe.vector);
-          else e.potential -= b.mass * fe.vector.dot(P[k].r + P[k].A * b.com);
-        }
-        break;
-      case ForceType::RotationalSpringDamper: {
-        const Joint& jt = model_.joints[fe.joint];
-        e.potential += fe.torque.integral(revoluteAngle(jt, joints_[fe.joint], P[jt.body_i], P[jt.body_j]));
-        break;
-      }
-      case ForceType::TranslationalSpringDamper: {
-        const Vector3d d = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi).x -
-                           attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi).x;
-        const double stretch = d.norm() - fe.free_length;
-        e.potential += 0.5 * fe.stiffness * stretch * stretch;
-        break;
-      }
-      case ForceType::ConstantForce:
-        if (!model_.bodies[fe.body_i].fixed)
-          e.potential -= fe.vector.dot(attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi).x);
-        break;
-      case ForceType::ConstantTorque:
-        break;
-    }
-  }
+  ForceSums sums;
+  for (std::size_t f = 0; f < model_.forces.size(); ++f)
+    if (force_on_[f]) addForceElement(model_, model_.forces[f], P, joints_, ForceQuantity::Potential, sums);
+  e.potential = sums.potential;
   e.dissipated = y[model_.nq + model_.nv];
   e.applied_work = y[model_.nq + model_.nv + 1];
   return e;

@@ -16,6 +16,7 @@
 
 #include "mbs-run/augmented_lagrangian.h"
 #include "mbs-run/constraints.h"
+#include "mbs-run/force_elements.h"
 #include "mbs-run/model.h"
 
 namespace fc::mbs {
@@ -79,10 +80,10 @@ class System {
   // Assembles Phi_v (sparse), Phi, Phi_t, c for the active joints at (t, poses).
   void assembleConstraints(double t, const std::vector<BodyPose>& P);
   void assembleMass(const std::vector<BodyPose>& P);
-  // Applied generalised forces (without the quadratic-velocity terms) and the
-  // powers of dampers and non-conservative loads.
-  void appliedForces(double t, const std::vector<BodyPose>& P, Eigen::VectorXd& Q,
-                     double& dissipation, double& applied_power) const;
+  // Generalised forces of the enabled force elements (without the
+  // quadratic-velocity terms) and the powers of dampers and non-conservative
+  // loads (force_elements.h).
+  void appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) const;
   void factorize();
   double penalty() const;
 

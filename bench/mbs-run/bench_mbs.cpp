@@ -44,7 +44,7 @@ void SarRun(benchmark::State& state, fc::mbs::IntegratorKind kind) {
 }
 
 void SarDopri5(benchmark::State& s) { SarRun(s, fc::mbs::IntegratorKind::DormandPrince); }
-void SarTrBdf2(benchmark::State& s) { SarRun(s, fc::mbs::IntegratorKind::Bdf); }
+void SarTrBdf2(benchmark::State& s) { SarRun(s, fc::mbs::IntegratorKind::TrBdf2); }
 BENCHMARK(SarDopri5)->DenseRange(4, 8, 1)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(SarTrBdf2)->DenseRange(4, 6, 1)->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -110,7 +110,7 @@ void SarPhase1(benchmark::State& state, const char* model) {
   m.settings.rtol = std::pow(10.0, -double(state.range(0)));
   m.settings.atol = 0.0;  // the scene default, 1e-3 rtol
   m.settings.integrator =
-      state.range(1) == 1 ? fc::mbs::IntegratorKind::Bdf : fc::mbs::IntegratorKind::DormandPrince;
+      state.range(1) == 1 ? fc::mbs::IntegratorKind::TrBdf2 : fc::mbs::IntegratorKind::DormandPrince;
   m.settings.switch_when_stiff = state.range(1) == 2;
   fc::mbs::Results r;
   for (auto _ : state) {

@@ -45,7 +45,7 @@ TEST(Presets, FillDefaultsAndExplicitKeysWin) {
   EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
   s = sceneFromText(pendulum("{t_end: 1, preset: accurate, integrator: trbdf2}")).settings;
   EXPECT_EQ(s.rtol, 1e-7);
-  EXPECT_EQ(s.integrator, IntegratorKind::Bdf);
+  EXPECT_EQ(s.integrator, IntegratorKind::TrBdf2);
   // No preset: the documented defaults (rtol 1e-6, auto -> dopri5 for a soft scene).
   s = sceneFromText(pendulum("{t_end: 1}")).settings;
   EXPECT_EQ(s.rtol, 1e-6);

@@ -1,0 +1,35 @@
+#pragma once
+// Force elements (contracts.md `forces:`): gravity, rotational and
+// translational spring-dampers, constant forces and torques. Each type is
+// defined once, in one function giving its generalised forces, the powers the
+// energy balance integrates (dampers, non-conservative loads) and its
+// potential energy, so that force and potential cannot drift apart.
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include "mbs-run/constraints.h"
+#include "mbs-run/kinematics.h"
+#include "mbs-run/model.h"
+
+namespace fc::mbs {
+
+// Sums over the force elements, accumulated in element order.
+struct ForceSums {
+  Eigen::VectorXd Q;           // generalised forces on the velocity coordinates (nv)
+  double dissipation = 0.0;    // power dissipated by dampers (>= 0)
+  double applied_power = 0.0;  // power of non-conservative loads (constant torques)
+  double potential = 0.0;      // potential energy of the conservative parts
+};
+
+// What to evaluate: the rates the derivative needs (Q and the powers), or the
+// potential energy only (energy reports).
+enum class ForceQuantity { ForcesAndPowers, Potential };
+
+// Adds the contribution of element `fe` at poses P (joint runtimes for the
+// revolute angle of rotational springs) to `sums`; sums.Q must have size nv
+// when forces are asked for.
+void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums);
+
+}  // namespace fc::mbs

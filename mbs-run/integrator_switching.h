@@ -1,0 +1,43 @@
+#pragma once
+// Which integrator runs each segment. A named method (dopri5, trbdf2) runs
+// throughout. With `integrator: auto` a segment between events starts with
+// Dormand-Prince and moves to TR-BDF2 if a stiff eigenvalue (a fast mode the
+// joints do not clamp, such as the SAR crank's 1 kHz modes once R1 is
+// released) holds the explicit steps at the stability boundary; an event
+// changes the dynamics, so the next segment starts explicit again.
+#include <Eigen/Dense>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mbs-run/integrator.h"
+#include "mbs-run/model.h"
+
+namespace fc::mbs {
+
+class IntegratorSwitching {
+ public:
+  IntegratorSwitching(const Settings& settings, Rhs f, const Tolerances& tol);
+  Integrator& current() { return *current_; }
+  // The method's name, "dopri5+trbdf2" once auto has switched.
+  const std::string& label() const { return label_; }
+  // After an event at (t, y): auto goes back to the explicit method, a named
+  // method restarts (its history is invalid).
+  void restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
+  // After an accepted step: moves to TR-BDF2 when auto's Dormand-Prince is
+  // held at its stability boundary above the stiff frequency. True if it did.
+  bool switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
+  long steps() const;
+  long rejected() const;
+
+ private:
+  const Settings& settings_;
+  Rhs f_;
+  Tolerances tol_;
+  std::unique_ptr<Integrator> explicit_, implicit_;
+  Integrator* current_ = nullptr;
+  std::string label_;
+};
+
+}  // namespace fc::mbs

@@ -1,0 +1,49 @@
+#pragma once
+// Statistics of a run: why it ended, what the integrators did, and the
+// accuracy diagnostics (constraint violation, energy balance), gathered as the
+// run goes and written as the results file's root attributes and the summary.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mbs-run/sampling.h"
+
+namespace fc::mbs {
+
+struct RunSummary {
+  std::string status = "completed";
+  std::string integrator;
+  std::vector<std::string> event_log;       // "t=...: what"
+  std::vector<std::string> integrator_log;  // "t=...: method (why)", automatic switches
+  long steps = 0, rejected_steps = 0, evaluations = 0;
+  long projections = 0;  // steps after which the drift exceeded atol/10 and was projected away
+  double cpu_seconds = 0.0, t_reached = 0.0;
+  long samples = 0;                  // output rows written
+  double max_violation = 0.0;        // over the output samples
+  double energy_balance_error = 0.0; // max |T + V + D - W - E_ref| per event-free segment
+  double energy_scale = 0.0;         // max of |T|, |V|, D over the run, to make it relative
+  int max_al_iterations = 0;
+
+  // Folds one output row into the statistics.
+  void observe(const Sample& s);
+};
+
+// "t=...:" prefix of the event and integrator logs.
+std::string timeLabel(double t);
+
+// The energy balance T + V + E_dissipated - W_applied = E_ref over an
+// event-free segment (an event changes the potential, so each segment has its
+// own reference), checked at every accepted step.
+class EnergyBalance {
+ public:
+  void startSegment(double total) { reference_ = total; }
+  void check(double total, RunSummary& r) const {
+    r.energy_balance_error = std::max(r.energy_balance_error, std::abs(total - reference_));
+  }
+
+ private:
+  double reference_ = 0.0;
+};
+
+}  // namespace fc::mbs

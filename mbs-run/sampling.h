@@ -1,0 +1,60 @@
+#pragma once
+// Sampling: what one output row of the results holds, how it is taken from a
+// state, and the output clock that says which rows fall inside a step.
+// Rows go to a SampleSink as they are taken (kept in memory by Results, or
+// streamed to the file by ResultsFileWriter), so the run loop keeps none.
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <vector>
+
+#include "mbs-run/model.h"
+#include "mbs-run/system.h"
+
+namespace fc::mbs {
+
+struct BodySample {
+  Eigen::Vector3d position, velocity, angular_velocity;  // global
+  Eigen::Vector4d orientation;                           // Euler parameters
+  Eigen::VectorXd modal, modal_rate;                     // flexible bodies, else empty
+};
+
+struct JointSample {
+  double angle = 0.0;  // revolute joints, else 0
+  Eigen::Vector3d reaction_force = Eigen::Vector3d::Zero();  // on the first body, global
+};
+
+struct Sample {
+  double time = 0.0;
+  std::vector<BodySample> bodies;
+  std::vector<JointSample> joints;
+  Energies energy;
+  double violation = 0.0;  // largest position-level constraint violation
+};
+
+// The output row at (t, y); y's Euler parameters are normalised first.
+Sample takeSample(System& sys, double t, Eigen::VectorXd y);
+
+class SampleSink {
+ public:
+  virtual ~SampleSink() = default;
+  virtual void write(const Sample& s) = 0;
+};
+
+// Output times k * output_step up to t_end.
+class OutputClock {
+ public:
+  OutputClock(double output_step, double t_end) : step_(output_step), t_end_(t_end) {}
+  double next() const { return index_ * step_; }
+  // True while the next output time lies within a step ending at t_new.
+  bool dueBy(double t_new) const {
+    return index_ * step_ <= t_new + 1e-12 * std::max(1.0, t_new) && next() <= t_end_ + 1e-12;
+  }
+  void advance() { ++index_; }
+
+ private:
+  double step_, t_end_;
+  long index_ = 0;
+};
+
+}  // namespace fc::mbs
