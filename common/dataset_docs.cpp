@@ -81,7 +81,7 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/inertia/exact/mass", "kg", "exact continuum mass, where it differs from /inertia/mass"},
       {"flexbody", "/inertia/exact/center_of_mass", "m", "exact continuum centre of mass, where it differs"},
       {"flexbody", "/inertia/exact/tensor", "kg m^2", "exact continuum inertia tensor about the body origin, where it differs"},
-      {"flexbody", "/interfaces/*/node", "1", "index of the node the interface is rigidly attached to"},
+      {"flexbody", "/interfaces/*/node", "1", "index of the node the interface is rigidly attached to (distributed: the patch node nearest the point)"},
       {"flexbody", "/interfaces/*/position", "m", "interface position, body frame, undeformed"},
       {"flexbody", "/interfaces/*/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
        "the interface point's own displacement and rotation per mode (n_modes, 6)"},

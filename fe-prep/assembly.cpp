@@ -35,12 +35,30 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
     return static_cast<int>(std::upper_bound(first.begin(), first.end(), node) - first.begin()) - 1;
   };
 
-  // Node adjacency from the connectivity: the sparsity pattern, exactly.
+  // Node adjacency from the connectivity: the sparsity pattern, exactly. A node
+  // whose DOF are expressed through other nodes' reduced DOF (a rigid slave
+  // through its master, a held distributing patch through the patch) links
+  // those nodes instead of itself.
+  std::vector<long> owner_node(static_cast<std::size_t>(map.reduced));
+  for (long i = 0; i < n; ++i)
+    for (int k = 0; k < map.count(i); ++k) owner_node[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] + k)] = i;
+  std::vector<std::vector<long>> sources(static_cast<std::size_t>(n));
+  for (long i = 0; i < n; ++i) {
+    auto& s = sources[static_cast<std::size_t>(i)];
+    for (long g : map.idx[static_cast<std::size_t>(i)]) s.push_back(owner_node[static_cast<std::size_t>(g)]);
+    std::sort(s.begin(), s.end());
+    s.erase(std::unique(s.begin(), s.end()), s.end());
+  }
   std::vector<std::vector<long>> adj(static_cast<std::size_t>(n));
+  std::vector<long> src;
   auto link = [&](const long* nodes, int count) {
-    for (int i = 0; i < count; ++i)
-      if (nodes[i] >= n0 && nodes[i] < n1)
-        for (int j = 0; j < count; ++j) adj[static_cast<std::size_t>(nodes[i])].push_back(nodes[j]);
+    src.clear();
+    for (int i = 0; i < count; ++i) {
+      const auto& s = sources[static_cast<std::size_t>(nodes[i])];
+      src.insert(src.end(), s.begin(), s.end());
+    }
+    for (long a : src)
+      if (a >= n0 && a < n1) adj[static_cast<std::size_t>(a)].insert(adj[static_cast<std::size_t>(a)].end(), src.begin(), src.end());
   };
   for (const auto& t : mesh.triangles) link(t.data(), 3);
   for (const auto& b : mesh.beams) link(b.data(), 2);
@@ -123,7 +141,7 @@ void addNodalTranslationalMass(MPI_Comm comm, const Mesh& mesh, const DofMap& ma
   std::vector<PetscInt> pidx;
   Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> buf;
   for (long k = first[static_cast<std::size_t>(rank)]; k < first[static_cast<std::size_t>(rank) + 1]; ++k) {
-    if (dm(k) == 0.0 || map.count(k) == 0) continue;
+    if (dm(k) == 0.0 || map.idx[static_cast<std::size_t>(k)].empty()) continue;
     D.topLeftCorner<3, 3>() = dm(k) * Eigen::Matrix3d::Identity();
     reduceElement(map, {k}, D, Dr, idx);
     pidx.assign(idx.begin(), idx.end());

@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "fe-prep/constraints.h"
+#include "fe-prep/reference_conditions.h"
 #include "fe-prep/mesh.h"
 
 namespace fc::feprep {

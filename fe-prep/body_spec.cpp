@@ -172,10 +172,42 @@ BodySpec parseBodySpec(const InputNode& root) {
   std::set<std::string> names;
   if (b.has("interfaces")) {
     const InputNode in = b["interfaces"];
-    if (!in.isMap()) in.fail("expected a map NAME: [x, y, z]");
+    if (!in.isMap()) in.fail("expected a map NAME: [x, y, z] or NAME: {point, coupling, nodes}");
     for (const auto& key : in.keys()) {
-      const InputNode p = in[key];
-      InterfaceSpec i{key, p.asVector(3), p};
+      const InputNode entry = in[key];
+      const InputNode p = entry.isMap() ? entry["point"] : entry;
+      InterfaceSpec i{key, p.asVector(3), entry};
+      if (entry.isMap()) {
+        entry.allowKeys({"point", "coupling", "nodes"});
+        const std::string c = entry["coupling"].asString();
+        if (c == "rigid") i.coupling = Coupling::Rigid;
+        else if (c == "distributing") i.coupling = Coupling::Distributing;
+        else entry["coupling"].fail("unknown coupling '" + c + "', expected distributing (RBE3) or rigid (RBE2)");
+        const InputNode nodes = entry["nodes"];
+        i.nodes_node = nodes;
+        nodes.allowKeys({"within", "edge", "box"});
+        if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
+        if (nodes.has("within")) {
+          i.select = PatchSelect::Within;
+          i.within = nodes["within"].asPositive();
+        } else if (nodes.has("edge")) {
+          i.select = PatchSelect::Edge;
+          i.edge = nodes["edge"].asString();
+          std::vector<std::string> sets;
+          if (spec.beam) sets.assign(std::begin(kEnds), std::end(kEnds));
+          else if (spec.shell->rectangle) sets.assign(std::begin(kEdges), std::end(kEdges));
+          if (!sets.empty() && std::find(sets.begin(), sets.end(), i.edge) == sets.end())
+            nodes["edge"].fail("unknown edge '" + i.edge + "', expected " +
+                               (spec.beam ? "end_min or end_max" : "edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
+        } else {
+          i.select = PatchSelect::Box;
+          const InputNode box = nodes["box"];
+          if (box.size() != 2) box.fail("expected two corners [[x0, y0, z0], [x1, y1, z1]]");
+          i.box_lo = box.at(0).asVector(3);
+          i.box_hi = box.at(1).asVector(3);
+          if ((i.box_hi.array() < i.box_lo.array()).any()) box.fail("expected the lower corner first (x0 <= x1, y0 <= y1, z0 <= z1)");
+        }
+      }
       if (spec.beam && (std::abs(i.position.x()) > spec.beam->length / 2 * (1 + 1e-9)))
         p.fail("the point's projection on the beam axis, x = " + std::to_string(i.position.x()) +
                ", is outside the beam [-length/2, length/2]");

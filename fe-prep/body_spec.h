@@ -34,10 +34,20 @@ struct BeamSpec {
   std::string section_source;      // file path or inline shape name
 };
 
+// How an interface point is attached (contracts.md, fe-prep "Distributed interfaces").
+enum class Coupling { Node, Rigid, Distributing };  // Node: rigidly to the one node at its projection
+enum class PatchSelect { Within, Edge, Box };
+
 struct InterfaceSpec {
   std::string name;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // the (reference) point
   InputNode node;
+  Coupling coupling = Coupling::Node;
+  PatchSelect select = PatchSelect::Within;
+  double within = 0.0;          // nodes: {within: r}
+  std::string edge;             // nodes: {edge: NAME}
+  Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();  // nodes: {box: [lo, hi]}
+  InputNode nodes_node;
 };
 
 struct ReferenceEntry {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,7 +15,8 @@
 #include "fe-prep/assembly.h"
 #include "fe-prep/beam_mesher.h"
 #include "fe-prep/body_inertia.h"
-#include "fe-prep/constraints.h"
+#include "fe-prep/interfaces.h"
+#include "fe-prep/reference_conditions.h"
 #include "fe-prep/elements/beam_element.h"
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mass_lumping.h"
@@ -173,24 +175,41 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   FlexBody& body = res.body;
   body.name = spec.name;
   body.nodes = mesh.nodes;
+  std::vector<MeshInterface> mesh_interfaces;
   for (const auto& i : spec.interfaces) {
     Eigen::Vector3d projection = i.position;
     if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
     else if (spec.shell->rectangle) projection.z() = 0.0;
-    double dist;
-    const long node = mesh.nearestNode(projection, &dist);
+    mesh_interfaces.push_back(resolveInterface(mesh, i, projection));
     FlexInterface fi;
     fi.name = i.name;
-    fi.node = node;
+    fi.node = mesh_interfaces.back().node;
     fi.position = i.position;
     body.interfaces.push_back(fi);
   }
-  std::vector<PointConstraint> constraints;
+  // Reference conditions: on an interface's point (through its node, its rigid
+  // patch's master, or its distributing patch), or on every node of a set.
+  std::vector<PointCondition> conditions, rigid_conditions;
+  std::vector<RigidCoupling> couplings;
+  std::vector<PatchCondition> patch_conditions;
+  std::map<std::string, bool> held_distributing;  // name -> clamp
+  for (const auto& mi : mesh_interfaces)
+    if (mi.coupling == Coupling::Rigid) {
+      RigidCoupling rc{mi.node, {}};
+      for (long k : mi.nodes)
+        if (k != mi.node) rc.slaves.push_back(k);
+      couplings.push_back(rc);
+    }
   for (const auto& r : spec.reference) {
-    auto it = std::find_if(body.interfaces.begin(), body.interfaces.end(),
-                           [&](const FlexInterface& f) { return f.name == r.set; });
-    if (it != body.interfaces.end()) {
-      constraints.push_back({it->node, it->position, r.clamp});
+    auto it = std::find_if(mesh_interfaces.begin(), mesh_interfaces.end(),
+                           [&](const MeshInterface& f) { return f.name == r.set; });
+    if (it != mesh_interfaces.end()) {
+      if (it->coupling == Coupling::Distributing) {
+        held_distributing[it->name] = held_distributing[it->name] || r.clamp;
+      } else {
+        conditions.push_back({it->node, it->point, r.clamp});
+        rigid_conditions.push_back(conditions.back());
+      }
       continue;
     }
     auto s = mesh.sets.find(r.set);
@@ -202,10 +221,25 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       r.node.fail("the mesh has no node set or interface '" + r.set + "'" +
                   (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     }
-    for (long n : s->second) constraints.push_back({n, mesh.nodes.row(n).transpose(), r.clamp});
+    for (long n : s->second) {
+      conditions.push_back({n, mesh.nodes.row(n).transpose(), r.clamp});
+      rigid_conditions.push_back(conditions.back());
+    }
   }
-  const DofMap map = buildDofMap(mesh, constraints);
-  const Eigen::MatrixXd rigid_full = admissibleRigidModes(mesh, constraints);
+  for (const auto& [name, clamp] : held_distributing) {
+    const MeshInterface& mi = *std::find_if(mesh_interfaces.begin(), mesh_interfaces.end(),
+                                            [&](const MeshInterface& f) { return f.name == name; });
+    patch_conditions.push_back({mi.nodes, clamp ? mi.W : Eigen::MatrixXd(mi.W.topRows(3))});
+    rigid_conditions.push_back({-1, mi.point, clamp});
+  }
+  DofMap map;
+  try {
+    map = buildDofMap(mesh, conditions, couplings, patch_conditions);
+  } catch (const std::invalid_argument& e) {
+    const InputNode where = spec.reference.empty() ? spec.interfaces.front().node : spec.reference.front().node;
+    where.fail(std::string("cannot apply the interfaces and reference conditions: ") + e.what());
+  }
+  const Eigen::MatrixXd rigid_full = admissibleRigidModes(mesh, rigid_conditions);
   Eigen::MatrixXd rigid(map.reduced, rigid_full.cols());
   for (long j = 0; j < rigid_full.cols(); ++j) rigid.col(j) = map.restrict(rigid_full.col(j));
   res.dofs = 6 * mesh.nodeCount();
@@ -294,8 +328,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   body.frequencies_hz = modal.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
   body.shapes.resize(6 * mesh.nodeCount(), nm);
   for (long j = 0; j < nm; ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
-  for (auto& fi : body.interfaces)
-    fi.shapes = interfaceShapes(body.shapes, fi.node, fi.position - mesh.nodes.row(fi.node).transpose());
+  for (std::size_t k = 0; k < body.interfaces.size(); ++k)
+    body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);
   IndexMatrix conn;
   if (n_tri > 0) {
     conn.resize(n_tri, 3);

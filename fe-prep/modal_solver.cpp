@@ -3,6 +3,7 @@
 #include <slepceps.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -16,6 +17,33 @@ void check(PetscErrorCode ierr, const char* what) {
   if (ierr) throw std::runtime_error(std::string("SLEPc/PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
 }
 
+// PETSc/SLEPc objects released on every path, a thrown error included (issue 12).
+template <class T, PetscErrorCode (*Destroy)(T*)>
+struct Owned {
+  T h = nullptr;
+  Owned() = default;
+  explicit Owned(T x) : h(x) {}
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  Owned(Owned&& o) noexcept : h(o.h) { o.h = nullptr; }
+  Owned& operator=(Owned&& o) noexcept {
+    if (this != std::addressof(o)) {
+      if (h) Destroy(&h);
+      h = o.h;
+      o.h = nullptr;
+    }
+    return *this;
+  }
+  ~Owned() {
+    if (h) Destroy(&h);
+  }
+  T* operator&() { return &h; }
+  operator T() const { return h; }
+};
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedEps = Owned<EPS, EPSDestroy>;
+using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
+
 struct MonitorContext {
   const std::function<void(long, long)>* progress;
   long wanted;
@@ -28,8 +56,8 @@ PetscErrorCode monitor(EPS, PetscInt, PetscInt nconv, PetscScalar*, PetscScalar*
 }
 
 // A PETSc vector with the layout of M's rows holding this rank's part of v.
-Vec toPetsc(Mat M, const Eigen::VectorXd& v) {
-  Vec x;
+OwnedVec toPetsc(Mat M, const Eigen::VectorXd& v) {
+  OwnedVec x;
   check(MatCreateVecs(M, &x, nullptr), "MatCreateVecs");
   PetscInt lo, hi;
   check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
@@ -58,10 +86,10 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
 
   // M-products of the rigid basis, for the share of each mode in the rigid space:
   // share(x) = b^T G^{-1} b with b = R^T M x, G = R^T M R, x M-normalised.
-  std::vector<Vec> MR(static_cast<std::size_t>(r));
+  std::vector<OwnedVec> MR(static_cast<std::size_t>(r));
   Eigen::MatrixXd G(r, r);
   {
-    std::vector<Vec> R(static_cast<std::size_t>(r));
+    std::vector<OwnedVec> R(static_cast<std::size_t>(r));
     for (long j = 0; j < r; ++j) {
       R[static_cast<std::size_t>(j)] = toPetsc(M, rigid.col(j));
       check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
@@ -73,7 +101,6 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
         check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &d), "VecDot");
         G(i, j) = d;
       }
-    for (auto& v : R) VecDestroy(&v);
   }
   const Eigen::MatrixXd Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
 
@@ -84,7 +111,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
   ModalResult result;
   for (;;) {
     const long nev = std::min<long>(wanted + r, N);
-    EPS eps;
+    OwnedEps eps;
     check(EPSCreate(comm, &eps), "EPSCreate");
     check(EPSSetOperators(eps, K, M), "EPSSetOperators");
     check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
@@ -116,8 +143,8 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     result.iterations += its;
 
     std::vector<Pair> pairs;
-    Vec xr, Mx, xall;
-    VecScatter scatter;
+    OwnedVec xr, Mx, xall;
+    OwnedScatter scatter;
     check(MatCreateVecs(K, &xr, &Mx), "MatCreateVecs");
     check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
     for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
@@ -147,11 +174,6 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
       if (x(imax) < 0) x = -x;
       pairs.push_back({kr, std::move(x), share});
     }
-    VecScatterDestroy(&scatter);
-    VecDestroy(&xall);
-    VecDestroy(&xr);
-    VecDestroy(&Mx);
-    EPSDestroy(&eps);
 
     if (static_cast<long>(pairs.size()) < nev)
       throw std::runtime_error("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +
@@ -195,7 +217,6 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     }
     break;
   }
-  for (auto& v : MR) VecDestroy(&v);
   return result;
 }
 
