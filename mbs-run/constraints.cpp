@@ -186,7 +186,11 @@ int constraintCount(const Joint& jt, const JointRuntime& rt) {
   if (!rt.enabled) return 0;
   switch (jt.type) {
     case JointType::Spherical: return 3;
-    case JointType::Revolute: return (rt.locked || jt.drive.active) ? 6 : 5;
+    case JointType::Revolute: {
+      const bool held = rt.locked || jt.drive.active || rt.contact != 0;
+      if (jt.stop_only) return held ? 1 : 0;
+      return held ? 6 : 5;
+    }
     case JointType::Fixed: return 6;
     case JointType::Universal: return 4;
     case JointType::Cylindrical: return 4;
@@ -213,6 +217,10 @@ void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& b
       dot1(vi(jt.axis_i), vj(jt.axis_j), o, 3);
       break;
     case JointType::Revolute: {
+      if (jt.stop_only) {  // only the angle row, while locked or resting on a stop
+        dot1(vi(rt.lock_vector), vj(revoluteFrame(jt).fj), o, 0);
+        break;
+      }
       spherical(attachedPoint(bi, jt.point_i, psi_i), xj, o, 0);
       Vector3d uj, wj;
       orthonormalComplement(jt.axis_j, uj, wj);
@@ -223,7 +231,7 @@ void jointConstraints(const Joint& jt, const JointRuntime& rt, const BodyPose& b
       if (jt.drive.active) {
         drivenDot1(bi, th_i, fr, vj(fr.fj), jt.drive.angle(t) - rt.angle_offset, jt.drive.rate(t),
                    jt.drive.accel(t), o, 5);
-      } else if (rt.locked) {
+      } else if (rt.locked || rt.contact != 0) {
         dot1(vi(rt.lock_vector), vj(fr.fj), o, 5);
       }
       break;

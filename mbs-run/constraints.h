@@ -19,6 +19,9 @@ namespace fc::mbs {
 struct JointRuntime {
   bool enabled = true;
   bool locked = false;
+  // Revolute with limits: -1 resting on its min stop, +1 on its max stop, 0
+  // free; while resting the angle is held by the lock row (lock_vector).
+  int contact = 0;
   // Fixed joint: the offset of the point of j from the point of i in the
   // joint frame of i (body i axes turned by the modal rotation at point i),
   // and the rotation whose columns, turned with body i's joint frame, are

@@ -42,4 +42,9 @@ CrossingEvents::Hit CrossingEvents::locate(const System& sys, const Integrator& 
   return hit;
 }
 
+void CrossingEvents::rearm(const Event* e) {
+  for (std::size_t k = 0; k < events_.size(); ++k)
+    if (events_[k] == e) fired_[k] = 0;
+}
+
 }  // namespace fc::mbs

@@ -23,6 +23,8 @@ class CrossingEvents {
   // The earliest armed crossing over the integrator's last step, from state
   // y0 at t0 to its current state; disarms the event found.
   Hit locate(const System& sys, const Integrator& integ, double t0, const Eigen::VectorXd& y0);
+  // Arms a located crossing again (an earlier stop event cut the step short).
+  void rearm(const Event* e);
 
  private:
   std::vector<const Event*> events_;

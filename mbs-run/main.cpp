@@ -1,4 +1,5 @@
 // mbs-run SCENE.yaml -o RESULTS.h5: multibody dynamics of a scene.
+#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -56,6 +57,13 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std:
   std::printf("  energy balance error %.3e J (%.3e of the largest energy term %.3e J)\n", r.energy_balance_error,
               r.energy_scale > 0 ? r.energy_balance_error / r.energy_scale : 0.0, r.energy_scale);
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
+  for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.distances.size(); ++k) {
+    const std::vector<double>& d = r.distances[k];
+    if (d.empty()) continue;
+    const std::size_t i = std::min_element(d.begin(), d.end()) - d.begin();
+    std::printf("  distance %s-%s: smallest %.4g m at t = %.6g s\n", m.bodies[m.distance_pairs[k][0]].name.c_str(),
+                m.bodies[m.distance_pairs[k][1]].name.c_str(), d[i], r.time[i]);
+  }
   for (const std::string& e : r.integrator_log) std::printf("  integrator %s\n", e.c_str());
 }
 

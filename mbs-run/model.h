@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mbs-run/augmented_lagrangian.h"
+#include "mbs-run/distance.h"
 
 namespace fc::mbs {
 
@@ -40,6 +41,9 @@ struct Body {
   // `modal_velocities` in the scene, the names of the results datasets, so a
   // run can start from any row of another); zero unless given.
   Eigen::VectorXd modal_coordinates, modal_velocities;
+  // Shape for the contact monitor (distance.h): a rod's axis, a plate's
+  // mid-plane, a `geometry:` key, or a flexible body's mesh; null if none.
+  std::shared_ptr<const BodyGeometry> geometry;
   int dof_index = -1;  // first velocity coordinate (6 + modes per free body), -1 if fixed
   int pos_index = -1;  // first position coordinate (7 + modes per free body)
   int nv() const { return 6 + modes; }
@@ -69,6 +73,17 @@ struct PointShapes {
   Eigen::MatrixXd psi = Eigen::MatrixXd::Zero(3, 0), theta = Eigen::MatrixXd::Zero(3, 0);
 };
 
+// One-sided stops on a revolute joint's angle (scene `limits: {min, max,
+// restitution}`; docs/mbs-run.md "Stops"): the angle stays in [min, max]; an
+// impact reverses the approach rate with Newton's coefficient, and a joint
+// that cannot rebound above the tolerance rests on the stop while pushed.
+struct JointLimits {
+  bool has_min = false, has_max = false;
+  double min = 0.0, max = 0.0;
+  double restitution = 0.0;
+  bool any() const { return has_min || has_max; }
+};
+
 struct Joint {
   std::string name;
   JointType type = JointType::Spherical;
@@ -81,6 +96,11 @@ struct Joint {
   bool enabled = true;
   bool locked = false;                        // revolute: angle held
   Drive drive;                                // revolute: angle prescribed in time
+  JointLimits limits;                         // revolute: stops on the angle
+  // Revolute `stop_only: true`: the joint only measures the angle between
+  // two bodies that other joints hold (a flexible hinge's two spherical
+  // joints) and adds a row only while locked or resting on a stop.
+  bool stop_only = false;
 };
 
 enum class ForceType { Gravity, RotationalSpringDamper, TranslationalSpringDamper, ConstantForce, ConstantTorque };
@@ -159,6 +179,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<ForceElement> forces;
   std::vector<Event> events;
+  // Contact monitor (`outputs: {distances: [[A, B], ...]}`): body index pairs.
+  std::vector<std::array<int, 2>> distance_pairs;
   Settings settings;
   int nq = 0, nv = 0;  // 7 + modes and 6 + modes per free body
   std::string source;  // scene file, for messages

@@ -1,5 +1,6 @@
 #include "mbs-run/results.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -21,6 +22,10 @@ Eigen::MatrixXd rows(const std::vector<Eigen::Matrix<double, N, 1>>& v) {
 
 Eigen::VectorXd column(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::string distanceChannel(const Model& m, std::size_t k) {
+  return "distances/" + m.bodies[m.distance_pairs[k][0]].name + "-" + m.bodies[m.distance_pairs[k][1]].name;
 }
 
 // Every channel by name, as an (n_out, k) matrix.
@@ -48,7 +53,13 @@ std::vector<std::pair<std::string, Eigen::MatrixXd>> channels(const Model& m, co
     const std::string p = "joints/" + m.joints[j].name + "/";
     if (m.joints[j].type == JointType::Revolute) c.emplace_back(p + "angle", column(r.joint_angle[j]));
     c.emplace_back(p + "reaction_force", rows<3>(r.reaction[j]));
+    if (m.joints[j].limits.any() && j < r.limit_state.size()) {
+      c.emplace_back(p + "limit_state", column(std::vector<double>(r.limit_state[j].begin(), r.limit_state[j].end())));
+      c.emplace_back(p + "limit_torque", column(r.limit_torque[j]));
+    }
   }
+  for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.distances.size(); ++k)
+    c.emplace_back(distanceChannel(m, k), column(r.distances[k]));
   c.emplace_back("energy/kinetic", column(r.kinetic));
   c.emplace_back("energy/potential", column(r.potential));
   c.emplace_back("energy/strain", column(r.strain));
@@ -68,6 +79,24 @@ void writeResults(const std::string& path, const Model& model, const Results& r,
   for (const auto& [name, data] : channels(model, r)) {
     if (data.cols() == 1) f.writeVector("/" + name, data.col(0));
     else f.writeMatrix("/" + name, data);
+  }
+  // Impacts on stops: one row per impact (time, angle rate before and after,
+  // impulse, energy dissipated), written even when there were none.
+  for (std::size_t j = 0; j < model.joints.size() && j < r.limit_impacts.size(); ++j) {
+    if (!model.joints[j].limits.any()) continue;
+    const auto& imp = r.limit_impacts[j];
+    Eigen::MatrixXd m(imp.size(), 5);
+    for (std::size_t k = 0; k < imp.size(); ++k)
+      for (int c = 0; c < 5; ++c) m(k, c) = imp[k][c];
+    f.writeMatrix("/joints/" + model.joints[j].name + "/limit_impacts", m);
+  }
+  // Contact monitor summary: the smallest distance of each pair and when.
+  for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.distances.size(); ++k) {
+    const std::vector<double>& d = r.distances[k];
+    if (d.empty()) continue;
+    const std::size_t i = std::min_element(d.begin(), d.end()) - d.begin();
+    f.setAttribute("/" + distanceChannel(model, k), "minimum", d[i]);
+    f.setAttribute("/" + distanceChannel(model, k), "time_of_minimum", r.time[i]);
   }
   f.setAttribute("/", "cpu_seconds", r.cpu_seconds);
   f.setAttribute("/", "steps", r.steps);

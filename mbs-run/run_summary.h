@@ -3,6 +3,7 @@
 // accuracy diagnostics (constraint violation, energy balance), gathered as the
 // run goes and written as the results file's root attributes and the summary.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -24,6 +25,9 @@ struct RunSummary {
   double energy_balance_error = 0.0; // max |T + V + D - W - E_ref| per event-free segment
   double energy_scale = 0.0;         // max of |T|, |V|, D over the run, to make it relative
   int max_al_iterations = 0;
+  // Impacts on stops, per joint (empty for joints without limits): time,
+  // angle rate before and after [rad/s], impulse [N m s], energy lost [J].
+  std::vector<std::vector<std::array<double, 5>>> limit_impacts;
 
   // Folds one output row into the statistics.
   void observe(const Sample& s);

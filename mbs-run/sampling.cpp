@@ -25,6 +25,18 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     s.joints[j].reaction_force = reac[j];
     s.joints[j].angle = m.joints[j].type == JointType::Revolute ? sys.jointAngle(int(j), y) : 0.0;
+    if (m.joints[j].limits.any()) {  // reads the multipliers reactions() left
+      const JointRuntime& rt = sys.jointRuntime(int(j));
+      s.joints[j].limit_state = rt.locked ? 2 : rt.contact;
+      s.joints[j].limit_torque = rt.locked || rt.contact != 0 ? sys.holdingTorque(int(j)) : 0.0;
+    }
+  }
+  // Contact monitor: smallest distance between each named pair's geometry.
+  for (const auto& pr : m.distance_pairs) {
+    const BodyGeometry &ga = *m.bodies[pr[0]].geometry, &gb = *m.bodies[pr[1]].geometry;
+    const BodyPose &a = P[pr[0]], &b = P[pr[1]];
+    s.distances.push_back(geometryDistance(ga, placedVertices(ga, a.r, a.A, a.modal), gb,
+                                           placedVertices(gb, b.r, b.A, b.modal)));
   }
   s.energy = sys.energies(t, y);
   s.violation = sys.constraintViolation(t, y);

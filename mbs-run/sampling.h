@@ -22,6 +22,10 @@ struct BodySample {
 struct JointSample {
   double angle = 0.0;  // revolute joints, else 0
   Eigen::Vector3d reaction_force = Eigen::Vector3d::Zero();  // on the first body, global
+  // Joints with limits (joint_limits.h): 0 free, -1 / +1 resting on the
+  // min / max stop, 2 locked; the held angle row's torque about the axis.
+  int limit_state = 0;
+  double limit_torque = 0.0;
 };
 
 struct Sample {
@@ -30,6 +34,7 @@ struct Sample {
   std::vector<JointSample> joints;
   Energies energy;
   double violation = 0.0;  // largest position-level constraint violation
+  std::vector<double> distances;  // contact monitor, per Model::distance_pairs [m]
 };
 
 // The output row at (t, y); y's Euler parameters are normalised first.

@@ -84,10 +84,34 @@ void parseInertia(const InputNode& b, Body& body) {
 
 Body parseBody(const InputNode& b) {
   b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
-               "angular_velocity", "modal_coordinates", "modal_velocities"});
+               "angular_velocity", "modal_coordinates", "modal_velocities", "geometry"});
   Body body;
   body.name = b["name"].asString();
   parseInertia(b, body);
+  if (b.has("rod")) body.geometry = std::make_shared<BodyGeometry>(rodGeometry(b["rod"]["length"].asPositive()));
+  if (b.has("plate"))
+    body.geometry = std::make_shared<BodyGeometry>(
+        rectangleGeometry(b["plate"]["length"].asPositive(), b["plate"]["width"].asPositive()));
+  if (b.has("geometry")) {
+    const InputNode g = b["geometry"];
+    if (body.flex) g.fail("a flexible body's geometry is its mesh in the body file");
+    g.allowKeys({"segment", "rectangle"});
+    if (g.has("segment") == g.has("rectangle")) g.fail("expected one of 'segment' or 'rectangle'");
+    auto geo = std::make_shared<BodyGeometry>();
+    if (g.has("segment")) {
+      const InputNode sgm = g["segment"];
+      if (!sgm.isSequence() || sgm.size() != 2) sgm.fail("expected two end points [[x, y, z], [x, y, z]] (body frame)");
+      geo->vertices.resize(3, 2);
+      geo->vertices.col(0) = vec3(sgm.at(0));
+      geo->vertices.col(1) = vec3(sgm.at(1));
+      geo->segments.push_back({0, 1});
+    } else {
+      const Eigen::VectorXd lw = g["rectangle"].asVector(2);
+      if (!(lw.minCoeff() > 0)) g["rectangle"].fail("expected [length, width] > 0 (body x and y, centred)");
+      *geo = rectangleGeometry(lw[0], lw[1]);
+    }
+    body.geometry = geo;
+  }
   body.fixed = b.flag("fixed", false);
   if (body.fixed && body.flex) b["fixed"].fail("a flexible body cannot be fixed: use a rigid body, or clamp it with a fixed joint");
   if (b.has("position")) body.position = vec3(b["position"]);
@@ -169,7 +193,8 @@ JointType jointType(const InputNode& n) {
 }
 
 Joint parseJoint(const Model& m, const InputNode& j) {
-  j.allowKeys({"name", "type", "bodies", "points", "axes", "initial_angle", "enabled", "locked", "drive"});
+  j.allowKeys({"name", "type", "bodies", "points", "axes", "initial_angle", "enabled", "locked", "drive", "limits",
+               "stop_only"});
   Joint jt;
   jt.name = j["name"].asString();
   jt.type = jointType(j["type"]);
@@ -220,6 +245,31 @@ Joint parseJoint(const Model& m, const InputNode& j) {
       if (!(jt.drive.spin_time > 0)) su["time"].fail("expected a spin-up time > 0 [s]");
     }
     if (!j.has("initial_angle")) jt.initial_angle = jt.drive.angle(0.0);
+  }
+  if (j.has("limits")) {
+    const InputNode l = j["limits"];
+    if (jt.type != JointType::Revolute) l.fail("only revolute joints have limits (stops on the angle)");
+    if (jt.drive.active) l.fail("a driven joint cannot have limits: its angle is prescribed");
+    l.allowKeys({"min", "max", "restitution"});
+    JointLimits& lim = jt.limits;
+    lim.has_min = l.has("min");
+    lim.has_max = l.has("max");
+    if (!lim.any()) l.fail("expected 'min', 'max' or both [rad]");
+    if (lim.has_min) lim.min = l["min"].asDouble();
+    if (lim.has_max) lim.max = l["max"].asDouble();
+    if (lim.has_min && lim.has_max && !(lim.max > lim.min))
+      l["max"].fail("expected max > min, got min " + std::to_string(lim.min) + ", max " + std::to_string(lim.max));
+    lim.restitution = l.has("restitution") ? l["restitution"].asNonNegative() : 0.0;
+    if (lim.restitution > 1.0) l["restitution"].fail("expected a restitution coefficient in [0, 1]");
+    // The start must be inside the stops (a rounding of the given angle aside).
+    const double slack = 1e-9 * (1.0 + std::abs(jt.initial_angle));
+    if ((lim.has_min && jt.initial_angle < lim.min - slack) || (lim.has_max && jt.initial_angle > lim.max + slack))
+      l.fail("the initial angle " + std::to_string(jt.initial_angle) + " rad is outside the limits");
+  }
+  if (j.has("stop_only")) {
+    if (jt.type != JointType::Revolute) j["stop_only"].fail("only a revolute joint can be stop_only");
+    jt.stop_only = j["stop_only"].asBool();
+    if (jt.stop_only && jt.drive.active) j["stop_only"].fail("a stop_only joint cannot be driven");
   }
   return jt;
 }
@@ -421,10 +471,58 @@ void forEachEntry(const InputNode& root, const char* key, F&& f) {
   for (std::size_t k = 0; k < list.size(); ++k) f(list.at(k), static_cast<int>(k));
 }
 
+
+// A flexible body's geometry for the contact monitor: its mesh (shell
+// triangles, beam elements as segments) with each node's modal displacement.
+std::shared_ptr<BodyGeometry> meshGeometry(const Body& b, const InputNode& at) {
+  fc::FlexBodyFile f;
+  try {
+    f = fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
+  } catch (const std::exception& e) {
+    at.fail(std::string("cannot read the mesh of body '") + b.name + "': " + e.what());
+  }
+  auto g = std::make_shared<BodyGeometry>();
+  const Eigen::Index n = f.body.nodes.rows();
+  g->vertices = f.body.nodes.transpose();
+  g->modal_displacement.resize(3 * n, b.modes);
+  for (Eigen::Index k = 0; k < n; ++k)
+    g->modal_displacement.middleRows(3 * k, 3) = f.body.shapes.block(6 * k, 0, 3, b.modes);
+  for (const auto& [kind, el] : f.body.elements) {
+    for (Eigen::Index e = 0; e < el.rows(); ++e) {
+      if (el.cols() == 3) g->triangles.push_back({int(el(e, 0)), int(el(e, 1)), int(el(e, 2))});
+      else if (el.cols() == 2) g->segments.push_back({int(el(e, 0)), int(el(e, 1))});
+    }
+  }
+  if (g->triangles.empty() && g->segments.empty()) at.fail("body '" + b.name + "' has no mesh elements in its file");
+  return g;
+}
+
+void parseOutputs(const InputNode& o, Model& m) {
+  o.allowKeys({"distances", "stresses"});
+  if (o.has("stresses")) o["stresses"].fail("ply stress recovery is not implemented in this version of mbs-run");
+  if (!o.has("distances")) return;
+  const InputNode d = o["distances"];
+  if (!d.isSequence()) d.fail("expected a list of body pairs [[A, B], ...]");
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    const InputNode p = d.at(k);
+    if (!p.isSequence() || p.size() != 2) p.fail("expected a pair of body names [A, B]");
+    std::array<int, 2> pair{bodyRef(m, p.at(0)), bodyRef(m, p.at(1))};
+    if (pair[0] == pair[1]) p.fail("expected two different bodies");
+    for (int i = 0; i < 2; ++i) {
+      Body& b = m.bodies[pair[i]];
+      if (!b.geometry && b.flex) b.geometry = meshGeometry(b, p.at(i));
+      if (!b.geometry)
+        p.at(i).fail("body '" + b.name + "' has no geometry: give it `geometry: {segment: [[x, y, z], [x, y, z]]}` or "
+                     "`geometry: {rectangle: [length, width]}` (rod and plate bodies and flexible bodies have one)");
+    }
+    m.distance_pairs.push_back(pair);
+  }
+}
+
 }  // namespace
 
 Model parseScene(const InputNode& root) {
-  root.allowKeys({"bodies", "joints", "forces", "events", "simulation", "materials", "laminates"});
+  root.allowKeys({"bodies", "joints", "forces", "events", "simulation", "materials", "laminates", "outputs"});
   Model m;
   m.source = root.file();
   std::set<std::string> names;
@@ -447,6 +545,7 @@ Model parseScene(const InputNode& root) {
     m.forces.push_back(fe);
   });
   forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
+  if (root.has("outputs")) parseOutputs(root["outputs"], m);
   parseSimulation(root["simulation"], m.settings);
   if (m.settings.integrator == IntegratorKind::Auto) {
     m.settings.integrator = chooseIntegrator(m);

@@ -1,12 +1,15 @@
 #include "mbs-run/simulation.h"
 
 #include <ctime>
+#include <optional>
+#include <stdexcept>
 #include <sstream>
 
 #include "common/progress.h"
 #include "mbs-run/crossings.h"
 #include "mbs-run/events.h"
 #include "mbs-run/integrator_switching.h"
+#include "mbs-run/joint_limits.h"
 
 namespace fc::mbs {
 
@@ -25,7 +28,11 @@ void History::append(const Sample& s) {
   if (reaction.size() != nj) {
     joint_angle.resize(nj);
     reaction.resize(nj);
+    limit_state.resize(nj);
+    limit_torque.resize(nj);
   }
+  if (distances.size() != s.distances.size()) distances.resize(s.distances.size());
+  for (std::size_t k = 0; k < s.distances.size(); ++k) distances[k].push_back(s.distances[k]);
   time.push_back(s.time);
   for (std::size_t k = 0; k < nb; ++k) {
     const BodySample& b = s.bodies[k];
@@ -39,6 +46,8 @@ void History::append(const Sample& s) {
   for (std::size_t j = 0; j < nj; ++j) {
     reaction[j].push_back(s.joints[j].reaction_force);
     joint_angle[j].push_back(s.joints[j].angle);
+    limit_state[j].push_back(s.joints[j].limit_state);
+    limit_torque[j].push_back(s.joints[j].limit_torque);
   }
   kinetic.push_back(s.energy.kinetic);
   potential.push_back(s.energy.potential);
@@ -100,6 +109,17 @@ class SummarySink : public SampleSink {
   RunSummary& r_;
 };
 
+// The kinetic energy a velocity jump removes (a lock or a joint switched on
+// while the bodies move is a plastic impact: the projection that follows is
+// its impulse) goes into the dissipated-energy quadrature, so that
+// T + V + D - W stays continuous across it.
+void projectKeepingEnergy(System& sys, double t, VectorXd& y) {
+  const double T0 = sys.energies(t, y).kinetic;
+  sys.project(t, y);
+  const double lost = T0 - sys.energies(t, y).kinetic;
+  if (lost > 0.0) y[sys.model().nq + sys.model().nv] += lost;
+}
+
 }  // namespace
 
 RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& output) {
@@ -117,6 +137,11 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   sys.initializeJoints(y);
 
   const Tolerances tol = tolerances(st, sys.size());
+  // Stops on revolute joints (joint_limits.h): the angle tolerance that
+  // decides when a rebound is too small to resolve is atol [rad].
+  StopMonitor stops(model, tol.atol);
+  stops.start(sys, 0.0, y, R.event_log);
+  if (stops.active()) sys.project(0.0, y);
   IntegratorSwitching methods(st, [&sys](double t, const VectorXd& yy, VectorXd& yd) { sys.derivative(t, yy, yd); },
                               tol);
   R.integrator = methods.label();
@@ -132,6 +157,8 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
 
   fc::Progress progress("mbs-run", st.t_end, options.quiet);
   double t = 0.0;
+  double last_stop_time = -1.0;
+  int same_time_stops = 0;
   // Any failure inside the step (a kernel throwing, a singular factorisation
   // reported as an exception) ends the run with what was computed so far and
   // a status saying why, as the contract asks of solver failures.
@@ -143,7 +170,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       }
       while (timed.dueAt(t)) {  // events at or before the current time (e.g. time 0) apply now
         R.event_log.push_back(timeLabel(t) + describeEvent(model, timed.applyNext(sys, y)));
-        sys.project(t, y);
+        projectKeepingEnergy(sys, t, y);
         methods.restartAfterEvent(t, y, R.integrator_log);
         balance.startSegment(sys.energies(t, y).total());
       }
@@ -152,9 +179,22 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
         R.status = stepFailure(t, integ, st, tol.atol);
         break;
       }
-      const CrossingEvents::Hit hit = crossings.locate(sys, integ, t, y);
-      const double t_new = hit.event ? hit.time : integ.t();
-      const VectorXd y_new = hit.event ? integ.interpolate(t_new) : integ.y();
+      CrossingEvents::Hit hit = crossings.locate(sys, integ, t, y);
+      double t_new = hit.event ? hit.time : integ.t();
+      // Stops: the earliest impact or release in the step, if not after the
+      // crossing (at equal times the stop acts first; the crossing is found
+      // again on the step that follows).
+      std::optional<StopEvent> stop;
+      if (stops.active()) {
+        stop = stops.locate(sys, [&integ](double tt) { return integ.interpolate(tt); }, t, y, t_new,
+                            hit.event ? integ.interpolate(t_new) : integ.y());
+        if (stop) {
+          if (hit.event) crossings.rearm(hit.event);
+          hit.event = nullptr;
+          t_new = stop->time;
+        }
+      }
+      const VectorXd y_new = hit.event || stop ? integ.interpolate(t_new) : integ.y();
       for (; clock.dueBy(t_new); clock.advance()) {
         const double to = std::min(clock.next(), t_new);
         sink.write(takeSample(sys, to, integ.interpolate(to)));
@@ -163,12 +203,23 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       t = t_new;
       y = y_new;
       sys.updateAngleReferences(y);
-      const bool projected = projectDrift(sys, t, y, tol.atol, hit.event != nullptr);
+      const bool projected = projectDrift(sys, t, y, tol.atol, hit.event != nullptr || stop);
       R.projections += projected;
       if (hit.event) {
         applyEvent(sys, *hit.event, y);
         R.event_log.push_back(timeLabel(t) + " joint " + model.joints[hit.event->joint].name + " crossed " +
                               std::to_string(hit.event->angle) + ";" + describeEvent(model, *hit.event));
+        projectKeepingEnergy(sys, t, y);
+        methods.restartAfterEvent(t, y, R.integrator_log);
+      } else if (stop) {
+        // Stop events that repeat without time advancing would be a Zeno
+        // sequence the rest rule should have prevented: stop, saying so.
+        same_time_stops = (t == last_stop_time) ? same_time_stops + 1 : 0;
+        last_stop_time = t;
+        if (same_time_stops > 20)
+          throw std::runtime_error("joint " + model.joints[stop->joint].name +
+                                   ": stop events repeat without time advancing (Zeno sequence)");
+        R.event_log.push_back(stops.apply(sys, *stop, t, y));
         sys.project(t, y);
         methods.restartAfterEvent(t, y, R.integrator_log);
       } else if (methods.switchIfStiff(t, y, R.integrator_log)) {
@@ -186,6 +237,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   }
   progress.finish();
   R.t_reached = t;
+  R.limit_impacts = stops.impacts();
   R.steps = methods.steps();
   R.rejected_steps = methods.rejected();
   R.evaluations = sys.stats().evaluations;

@@ -28,6 +28,9 @@ struct History {
   std::vector<std::vector<double>> joint_angle;                // [joint][row] (revolute only)
   std::vector<std::vector<Eigen::Vector3d>> reaction;          // [joint][row]
   std::vector<double> kinetic, potential, strain, dissipated, applied_work, violation;
+  std::vector<std::vector<int>> limit_state;       // [joint][row] (joints with limits, else empty)
+  std::vector<std::vector<double>> limit_torque;   // [joint][row]
+  std::vector<std::vector<double>> distances;      // [pair of Model::distance_pairs][row] [m]
 
   void append(const Sample& s);
 };

@@ -374,6 +374,36 @@ void System::setJointLocked(int j, bool on, const VectorXd& y) {
     captureLock(jt, rt, P_[jt.body_i], P_[jt.body_j]);
   }
   rt.locked = on;
+  rt.contact = 0;  // a lock holds the angle itself; a release leaves the joint free
+}
+
+void System::setLimitContact(int j, int side, const VectorXd& y) {
+  JointRuntime& rt = joints_[j];
+  if (side != 0 && !rt.locked) {
+    poses(y, P_);
+    const Joint& jt = model_.joints[j];
+    captureLock(jt, rt, P_[jt.body_i], P_[jt.body_j]);
+  }
+  rt.contact = side;
+}
+
+double System::holdingTorque(int j) const {
+  const Joint& jt = model_.joints[j];
+  const JointRuntime& rt = joints_[j];
+  if (jt.type != JointType::Revolute || !rt.enabled || !(rt.locked || rt.contact != 0 || jt.drive.active)) return 0.0;
+  const int row = row_of_joint_[j] + (jt.stop_only ? 0 : 5);
+  if (row >= lambda_.size()) return 0.0;
+  // The row is sin(angle - held angle) (captureLock), whose gradient is the
+  // angle's at the held angle, up to terms in the other rows of the joint;
+  // its generalised force is -Phi_row^T lambda, so the torque about the
+  // angle is -lambda.
+  return -lambda_[row];
+}
+
+void System::assembleAt(double t, const VectorXd& y) {
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  assembleMass(P_);
 }
 
 }  // namespace fc::mbs

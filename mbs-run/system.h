@@ -74,6 +74,20 @@ class System {
   bool forceEnabled(int f) const { return force_on_[f]; }
   const JointRuntime& jointRuntime(int j) const { return joints_[j]; }
 
+  // Stops (mbs-run/joint_limits.h). Rest on a stop (side -1 min, +1 max:
+  // the angle is held where it is by the lock row) or leave it (side 0).
+  void setLimitContact(int j, int side, const Eigen::VectorXd& y);
+  // The torque the held angle row of a locked or resting revolute joint
+  // applies about its axis (positive: it drives the angle up), from the
+  // multipliers of the last derivative() or reactions() call.
+  double holdingTorque(int j) const;
+  // Assembles the mass matrix and the constraint Jacobian at (t, y), for the
+  // impulse solves of impacts.
+  void assembleAt(double t, const Eigen::VectorXd& y);
+  const BlockDiagonal& massMatrix() const { return mass_; }
+  const SparseMatrixd& constraintJacobian() const { return Phi_v_; }
+  const Eigen::VectorXd& constraintTimeDerivative() const { return phit_; }
+
   const EvalStats& stats() const { return stats_; }
 
  private:

@@ -1,0 +1,405 @@
+// Stops on revolute joints (issue 13), against closed forms:
+// - the impulse kernel: the velocity jump of a constrained system keeps the
+//   other constraints, reverses the stop's rate by e and loses (1 - e^2) of
+//   the approach energy of the relative motion, also with redundant rows;
+// - a pendulum falling onto a stop hits it at the time and rate of the
+//   free pendulum (quadrature of the energy integral), rebounds with e w,
+//   each flight returns at the rate it left (so the impact rates follow e^k
+//   and the rise heights e^2k), rests after the number of bounces the rest
+//   rule predicts, and then the stop holds the static torque m g L/2 cos;
+// - energy over many elastic (e = 1) impacts between two stops is conserved;
+// - a plastic stop holds a body pushed into it (statics) and lets it go at
+//   the moment a pull exceeds the push, the motion after that in closed form;
+// - two free bodies colliding at an internal stop keep their linear and
+//   angular momentum (the impulse is internal: only the constrained system's
+//   momentum balance can give that);
+// - a flexible beam hitting a stop: the impulse enters at the joint
+//   interface, the modes are excited, and T + U + dissipated is conserved;
+// - bad limits are reported at their key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "beam_body.h"
+#include "common/input.h"
+#include "common/rotations.h"
+#include "helpers.h"
+#include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/joint_limits.h"
+#include "mbs-run/simulation.h"
+
+namespace fc::mbs::test {
+namespace {
+
+TEST(JointLimitsKernel, ImpulseKeepsConstraintsAndReversesTheRate) {
+  // Three coordinates, an SPD mass matrix, one constraint row twice
+  // (redundant) and the stop row g.
+  Eigen::Matrix3d M;
+  M << 4, 1, 0.5, 1, 3, 0.2, 0.5, 0.2, 2;
+  Eigen::MatrixXd Phi(2, 3);
+  Phi << 1, -1, 0.5, 2, -2, 1;  // the second row is twice the first
+  Eigen::RowVectorXd g(3);
+  g << 0.3, 1.0, -0.7;
+  // A v- that satisfies Phi v = 0.
+  Eigen::Vector3d v(1.0, 2.0, 2.0);
+  ASSERT_NEAR((Phi * v).norm(), 0.0, 1e-14);
+  Eigen::VectorXd phit = Eigen::VectorXd::Zero(2);
+  for (double e : {0.0, 0.3, 1.0}) {
+    const double rate = g.dot(v);
+    const ImpactSolution s = constrainedImpact(M, Phi, phit, g, v, -e * rate);
+    EXPECT_NEAR((Phi * s.v_plus).norm(), 0.0, 1e-13);
+    EXPECT_NEAR(g.dot(s.v_plus), -e * rate, 1e-13);
+    // M dv = Phi^T mu + g^T P: dv is M^-1 times a combination of the rows,
+    // so M dv - g^T P lies in the row space of Phi: orthogonal to its null space.
+    const Eigen::Vector3d r = M * (s.v_plus - v) - g.transpose() * s.impulse;
+    const Eigen::Vector3d nullv = Eigen::Vector3d(1, 1, 0);  // Phi * [1,1,0] = 0
+    EXPECT_NEAR(r.dot(nullv), 0.0, 1e-12);
+    // Energy: in the one-dimensional motion left by Phi, the rate's kinetic
+    // energy is 1/2 m_eff rate^2 with the effective mass along it, so the
+    // loss is (1 - e^2) of it. m_eff from the constrained mobility: motions
+    // with Phi u = 0 form span{n1, n2}; the loss is that of an impact of
+    // a 2-DOF system along g, 1/2 (1 - e^2) rate^2 / (g N (N^T M N)^-1 N^T g^T).
+    Eigen::Matrix<double, 3, 2> N;
+    N.col(0) = nullv;
+    N.col(1) = Eigen::Vector3d(0, 1, 2);  // Phi * [0,1,2] = 0
+    ASSERT_NEAR((Phi * N).norm(), 0.0, 1e-14);
+    const double w = (g * N * (N.transpose() * M * N).inverse() * N.transpose() * g.transpose())(0, 0);
+    const double loss = 0.5 * v.dot(M * v) - 0.5 * s.v_plus.dot(M * s.v_plus);
+    EXPECT_NEAR(loss, 0.5 * (1 - e * e) * rate * rate / w, 1e-12) << e;
+    EXPECT_NEAR(s.impulse, -(1 + e) * rate / w, 1e-12) << e;
+  }
+}
+
+TEST(JointLimitsKernel, RestRule) {
+  EXPECT_TRUE(shouldRest(0.0, 5.0, -1.0, 1e-9));   // plastic: always (a pull releases it afterwards)
+  EXPECT_FALSE(shouldRest(0.5, 1e-6, -1.0, 1e-9));  // pulled away: it leaves
+  EXPECT_TRUE(shouldRest(0.5, 1e-5, 10.0, 1e-9));   // apex 5e-12 rad < 1e-9
+  EXPECT_FALSE(shouldRest(0.5, 1e-3, 10.0, 1e-9));  // apex 5e-8 rad > 1e-9
+}
+
+// The rod pendulum of test_events.cpp: m = 1, L = 1, d = 0.01, pivot at one
+// end, starting horizontal at rest; the angle beta about +y grows as it
+// falls: I_o beta'' = m g (L/2) cos(beta).
+constexpr double kG = 9.81;
+double rodInertia() {
+  const double r = 0.005;
+  return (3 * r * r + 1.0) / 12 + 0.25;
+}
+std::string pendulumScene(const std::string& limits, const std::string& sim, const std::string& extra = "") {
+  return R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: arm
+    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
+    position: [0.5, 0, 0]
+joints:
+  - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]],
+     limits: )" + limits + R"(}
+forces:
+  - {name: g, type: gravity, g: [0, 0, -9.81]}
+)" + extra + "simulation: " + sim + "\n";
+}
+
+// Time for the pendulum to fall from 0 to beta: t = int_0^beta dB / sqrt(2 k sin B),
+// k = m g (L/2) / I_o; with B = u^2 the integrand 2u / sqrt(2 k sin u^2) is
+// smooth, integrated by Simpson's rule with 20000 intervals (error ~1e-15).
+double fallTime(double beta) {
+  const double k = kG * 0.5 / rodInertia();
+  const double U = std::sqrt(beta);
+  const int n = 20000;
+  auto f = [&](double u) {
+    if (u == 0) return 2.0 / std::sqrt(2 * k);  // limit of 2u / sqrt(2 k u^2)
+    return 2 * u / std::sqrt(2 * k * std::sin(u * u));
+  };
+  double s = f(0) + f(U);
+  for (int i = 1; i < n; ++i) s += (i % 2 ? 4 : 2) * f(U * i / n);
+  return s * U / (3 * n);
+}
+
+TEST(JointLimits, PendulumBouncesWithRestitutionThenRests) {
+  const double bs = M_PI / 3, e = 0.5, rtol = 1e-9;
+  const Results r = simulate(
+      sceneFromText(pendulumScene("{max: 1.0471975511965976, restitution: 0.5}",
+                                  "{t_end: 3.0, output_step: 0.01, rtol: 1.0e-9}")),
+      {true});
+  ASSERT_EQ(r.status, "completed");
+  const auto& imp = r.limit_impacts[0];
+  ASSERT_GE(imp.size(), 3u);
+  // First impact: the free pendulum's time and rate at beta_s.
+  const double k = kG * 0.5 / rodInertia();
+  const double w0 = std::sqrt(2 * k * std::sin(bs));
+  const double t0 = fallTime(bs);
+  std::printf("[   info   ] first impact at %.12f s (closed form %.12f), rate %.12f (%.12f) rad/s; %zu impacts\n",
+              imp[0][0], t0, imp[0][1], w0, imp.size());
+  // rtol 1e-9 on the angle (~1 rad) and its rate: the location is exact on
+  // the dense output, so the time error is the angle error over the rate.
+  EXPECT_NEAR(imp[0][0], t0, 1e-7);
+  EXPECT_NEAR(imp[0][1], w0, 1e-7);
+  // Each impact reverses the rate with e; between impacts the flight is
+  // conservative, so it comes back at the rate it left: impact k at e^k w0.
+  for (std::size_t i = 0; i < imp.size(); ++i) {
+    EXPECT_NEAR(imp[i][2], -e * imp[i][1], 1e-10 * w0) << i;
+    EXPECT_NEAR(imp[i][1], std::pow(e, int(i)) * w0, 1e-6 * w0) << i;
+    // Energy lost: (1 - e^2) of the impact's kinetic energy 1/2 I w^2.
+    EXPECT_NEAR(imp[i][4], 0.5 * rodInertia() * (1 - e * e) * imp[i][1] * imp[i][1], 1e-6 * k) << i;
+  }
+  // Flight k lasts 2 w_k / (a) only for a constant acceleration; the heights
+  // instead are exact: the apex after impact k is where 1/2 I (e^k+1 w0)^2 =
+  // m g L/2 (sin bs - sin beta): the rise in potential per flight falls by e^2.
+  double prev_rise = 0;
+  for (std::size_t i = 0; i + 1 < imp.size() && i < 4; ++i) {
+    double lowest = bs;
+    for (std::size_t n = 0; n < r.time.size(); ++n)
+      if (r.time[n] > imp[i][0] && r.time[n] < imp[i + 1][0]) lowest = std::min(lowest, r.joint_angle[0][n]);
+    const double rise = std::sin(bs) - std::sin(lowest);
+    const double expect = 0.5 * rodInertia() * std::pow(e * imp[i][1], 2) / (kG * 0.5);
+    // The output grid (10 ms) samples the apex within 1/2 a (5 ms)^2 of the angle.
+    EXPECT_NEAR(rise, expect, 0.5 * k * 0.5 * 25e-6 + 1e-9) << i;
+    if (i > 0) EXPECT_NEAR(rise / prev_rise, e * e, 0.02) << i;
+    prev_rise = rise;
+  }
+  // Rest: once the rebound apex (e w)^2 / (2 a) falls below atol = 1e-3
+  // rtol, with a = k cos(bs) the acceleration into the stop.
+  const double atol = 1e-3 * rtol, a = k * std::cos(bs);
+  int expected = 0;
+  while (std::pow(e * std::pow(e, expected) * w0, 2) >= 2 * a * atol) ++expected;
+  EXPECT_NEAR(double(imp.size()), double(expected + 1), 1.0);
+  // Resting: the stop holds the static gravity torque, pushing the angle
+  // down: -m g (L/2) cos(bs).
+  EXPECT_EQ(r.limit_state[0].back(), 1);
+  EXPECT_NEAR(r.limit_torque[0].back(), -kG * 0.5 * std::cos(bs), 1e-6);
+  EXPECT_NEAR(r.joint_angle[0].back(), bs, 1e-9);
+  // The energy the impacts took is in the dissipated channel.
+  const double E0 = r.kinetic[0] + r.potential[0];
+  const double Eend = r.kinetic.back() + r.potential.back() + r.dissipated.back();
+  EXPECT_NEAR(Eend, E0, 1e-6);
+  EXPECT_NEAR(r.dissipated.back(), kG * 0.5 * std::sin(bs), 1e-6);  // all the fall's energy
+}
+
+TEST(JointLimits, ElasticImpactsConserveEnergy) {
+  // Between stops at -0.5 and 0.8 rad, thrown upward at 8 rad/s so that it
+  // reaches both, elastic: it bounces for ever, ~50 impacts in 8 s.
+  const std::string scene = pendulumScene("{min: -0.5, max: 0.8, restitution: 1.0}",
+                                          "{t_end: 8.0, output_step: 0.01, rtol: 1.0e-9}");
+  const std::string thrown = std::string(scene).replace(scene.find("position: [0.5, 0, 0]"), 21,
+                                                         "position: [0.5, 0, 0]\n    angular_velocity: [0, -8, 0]"
+                                                         "\n    velocity: [0, 0, 4]");
+  const Results r = simulate(sceneFromText(thrown), {true});
+  ASSERT_EQ(r.status, "completed");
+  ASSERT_GT(r.limit_impacts[0].size(), 20u);
+  double dE = 0, dmax = 0;
+  const double E0 = r.kinetic[0] + r.potential[0];
+  for (std::size_t n = 0; n < r.time.size(); ++n) {
+    dE = std::max(dE, std::abs(r.kinetic[n] + r.potential[n] - E0));
+    dmax = std::max(dmax, r.dissipated[n]);
+  }
+  for (const auto& i : r.limit_impacts[0]) EXPECT_NEAR(i[2], -i[1], 1e-9 * std::abs(i[1]));
+  for (double a : r.joint_angle[0]) {
+    EXPECT_GE(a, -0.5 - 1e-9);
+    EXPECT_LE(a, 0.8 + 1e-9);
+  }
+  std::printf("[   info   ] %zu elastic impacts: |E - E0| <= %.2e J of %.3g J, dissipated %.2e J\n",
+              r.limit_impacts[0].size(), dE, std::abs(E0) + 4.9, dmax);
+  // Local errors of rtol 1e-9 per step add up over the ~1e3 steps; the
+  // impulses themselves are exact (e = 1 keeps T to rounding).
+  EXPECT_LT(dE, 1e-6);
+  EXPECT_LT(dmax, 1e-12);
+}
+
+TEST(JointLimits, PlasticStopHoldsWhilePushedAndReleasesWhenPulled) {
+  // A rotor (no gravity) turning into its min stop at 0 under a constant
+  // torque -2 N m about y; e = 0: it stays. At t = 1 a +5 N m torque joins:
+  // the net +3 N m pulls it off at that instant, and then
+  // angle = 3/I (t - 1)^2 / 2.
+  const double I = 0.3;
+  const Results r = simulate(sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: rotor
+    rigid: {mass: 2.0, inertia: [[0.2,0,0],[0,0.3,0],[0,0,0.2]]}
+    angular_velocity: [0, -1.0, 0]
+joints:
+  - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]],
+     initial_angle: 0.5, limits: {min: 0.0, restitution: 0.0}}
+forces:
+  - {name: push, type: torque, body: rotor, torque: [0, -2, 0]}
+  - {name: pull, type: torque, body: rotor, torque: [0, 5, 0], enabled: false}
+events:
+  - {time: 1.0, enable: [pull]}
+simulation: {t_end: 1.5, output_step: 0.01, rtol: 1.0e-10}
+)"),
+                             {true});
+  ASSERT_EQ(r.status, "completed");
+  ASSERT_EQ(r.limit_impacts[0].size(), 1u);
+  // Impact: 0.5 = t + t^2 (rate -1, accel -2/0.3): t = (-1 + sqrt(1 + 4 (1/0.3) 0.5 ... ) closed form.
+  const double acc = 2.0 / I;  // into the stop
+  const double ti = (-1.0 + std::sqrt(1.0 + 2 * acc * 0.5)) / acc;
+  EXPECT_NEAR(r.limit_impacts[0][0][0], ti, 1e-9);
+  EXPECT_NEAR(r.limit_impacts[0][0][1], -(1.0 + acc * ti), 1e-8);
+  EXPECT_NEAR(r.limit_impacts[0][0][4], 0.5 * I * std::pow(1.0 + acc * ti, 2), 1e-8);  // all of T
+  for (std::size_t n = 0; n < r.time.size(); ++n) {
+    const double t = r.time[n];
+    if (t > ti + 0.01 && t < 1.0) {
+      EXPECT_EQ(r.limit_state[0][n], -1) << t;
+      EXPECT_NEAR(r.limit_torque[0][n], 2.0, 1e-7) << t;  // statics: the stop returns the push
+      EXPECT_NEAR(r.joint_angle[0][n], 0.0, 1e-9) << t;
+    }
+    if (t > 1.0 + 1e-9) {
+      EXPECT_EQ(r.limit_state[0][n], 0) << t;
+      EXPECT_NEAR(r.joint_angle[0][n], 0.5 * (3.0 / I) * (t - 1.0) * (t - 1.0), 1e-8) << t;
+    }
+  }
+  bool released = false;
+  for (const std::string& l : r.event_log)
+    if (l.find("leaves its min stop") != std::string::npos) {
+      released = true;
+      EXPECT_EQ(l.rfind("t=1:", 0), 0u) << l;
+    }
+  EXPECT_TRUE(released);
+}
+
+TEST(JointLimits, InternalImpactKeepsMomentum) {
+  // Two free rods hinged at their ends (no ground, no gravity), folding
+  // toward each other; the hinge's stop at 0.3 rad is internal, so linear and
+  // angular momentum must be the same after the impacts.
+  const Results r = simulate(sceneFromText(R"(
+bodies:
+  - name: a
+    rod: {length: 1.0, diameter: 0.02, mass: 1.0}
+    position: [-0.5, 0, 0]
+    velocity: [0.1, 0.2, -0.3]
+    angular_velocity: [0.2, 1.0, 0.1]
+  - name: b
+    rod: {length: 1.0, diameter: 0.02, mass: 2.0}
+    position: [0.5, 0, 0]
+    velocity: [0.1, 0.2, 0.3]
+    angular_velocity: [0.2, -1.0, 0.1]
+joints:
+  - {name: H, type: revolute, bodies: [a, b], points: [[0.5,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]],
+     limits: {min: -0.3, max: 0.3, restitution: 0.6}}
+simulation: {t_end: 2.0, output_step: 0.01, rtol: 1.0e-10}
+)"),
+                             {true});
+  ASSERT_EQ(r.status, "completed");
+  ASSERT_GE(r.limit_impacts[0].size(), 2u);
+  // Linear momentum and angular momentum about the origin, from the output
+  // (rods: the CoM at the frame origin, I_c = m (3 r^2 + L^2)/12 across).
+  auto momenta = [&](std::size_t n, Eigen::Vector3d& p, Eigen::Vector3d& h) {
+    p.setZero();
+    h.setZero();
+    const double mass[2] = {1.0, 2.0};
+    for (int k = 0; k < 2; ++k) {
+      const double m = mass[k], Ia = 0.5 * m * 0.01 * 0.01, It = m * (3 * 1e-4 + 1.0) / 12;
+      const Eigen::Matrix3d A = fc::rotationMatrix(r.orientation[k][n]);
+      const Eigen::Matrix3d J = A * Eigen::Vector3d(Ia, It, It).asDiagonal() * A.transpose();
+      p += m * r.velocity[k][n];
+      h += r.position[k][n].cross(m * r.velocity[k][n]) + J * r.angular_velocity[k][n];
+    }
+  };
+  Eigen::Vector3d p0, h0, p1, h1;
+  momenta(0, p0, h0);
+  momenta(r.time.size() - 1, p1, h1);
+  std::printf("[   info   ] %zu impacts, |dp| %.2e, |dh| %.2e, dissipated %.4g J\n", r.limit_impacts[0].size(),
+              (p1 - p0).norm(), (h1 - h0).norm(), r.dissipated.back());
+  // rtol 1e-10 per step over ~1e3 steps on momenta of order 1.
+  EXPECT_LT((p1 - p0).norm(), 1e-7);
+  EXPECT_LT((h1 - h0).norm(), 1e-7);
+  EXPECT_GT(r.dissipated.back(), 1e-3);
+  const double E0 = r.kinetic[0], E1 = r.kinetic.back() + r.dissipated.back();
+  EXPECT_NEAR(E1, E0, 1e-7);
+  for (const auto& i : r.limit_impacts[0]) EXPECT_NEAR(i[2], -0.6 * i[1], 1e-9);
+}
+
+double E0ref(double I) { return 0.5 * I * 4.0; }
+
+TEST(JointLimits, FlexibleBeamImpulseThroughTheInterface) {
+  // A clamped-root flexible beam (tests' Euler-Bernoulli generator, 4 modes)
+  // turning about z at its root interface into a stop at 0.4 rad.
+  BeamSpec spec;
+  spec.modes = 4;
+  const BeamModel beam = cantileverBeam(spec);
+  const std::string file = writeBeam(beam, "stop");
+  // The effective inertia the stop meets: the beam's mass matrix (the
+  // invariants, undeformed) on the motions the revolute leaves, the frame's
+  // rotation about z and the modes; the loss of the first impact is
+  // 1/2 (1 - e^2) rate^2 I_eff with 1/I_eff = (M_r^-1)_00.
+  const fc::InertiaInvariants inv = fc::computeInertiaInvariants(beam.body, 4);
+  const FlexibleInertia fi = flexibleInertia(inv, Eigen::Matrix3d::Identity(), Eigen::VectorXd::Zero(4),
+                                             Eigen::VectorXd::Zero(4), Eigen::Vector3d(0, 0, 2.0));
+  std::vector<int> keep = {5, 6, 7, 8, 9};
+  Eigen::MatrixXd Mr(5, 5);
+  for (int a = 0; a < 5; ++a)
+    for (int b = 0; b < 5; ++b) Mr(a, b) = fi.M(keep[a], keep[b]);
+  const double I_eff = 1.0 / Mr.inverse()(0, 0);
+  const double I_rigid = fi.M(5, 5);
+  for (double e : {1.0, 0.5}) {
+    char scene[1400];
+    std::snprintf(scene, sizeof scene, R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: beam
+    flexible: {file: %s, modes: 4}
+    angular_velocity: [0, 0, 2.0]
+joints:
+  - {name: R, type: revolute, bodies: [ground, beam], points: [[0,0,0], root], axes: [[0,0,1],[0,0,1]],
+     limits: {max: 0.4, restitution: %g}}
+simulation: {t_end: 0.6, output_step: 0.005, rtol: 1.0e-9}
+)",
+                  file.c_str(), e);
+    const Results r = simulate(sceneFromText(scene), {true});
+    ASSERT_EQ(r.status, "completed");
+    ASSERT_GE(r.limit_impacts[0].size(), 1u);
+    const auto& i0 = r.limit_impacts[0][0];
+    EXPECT_NEAR(i0[0], 0.2, 1e-6);  // rate 2, no load before it
+    EXPECT_NEAR(i0[1], 2.0, 1e-6);
+    EXPECT_NEAR(i0[2], -e * i0[1], 1e-9);
+    EXPECT_NEAR(i0[4], 0.5 * (1 - e * e) * i0[1] * i0[1] * I_eff, 1e-6 * E0ref(I_rigid));
+    double umax = 0, dE = 0;
+    const double E0 = r.kinetic[0] + r.strain[0];
+    for (std::size_t n = 0; n < r.time.size(); ++n) {
+      umax = std::max(umax, r.strain[n]);
+      dE = std::max(dE, std::abs(r.kinetic[n] + r.strain[n] + r.dissipated[n] - E0));
+    }
+    std::printf("[   info   ] flexible beam, e = %.1f: %zu impacts, max strain energy %.3g J of %.3g J, energy "
+                "balance %.2e J\n", e, r.limit_impacts[0].size(), umax, E0, dE);
+    EXPECT_GT(umax, 1e-3 * E0);  // the impulse excites the modes
+    EXPECT_LT(dE, 1e-6 * E0);
+    if (e == 1.0) EXPECT_LT(r.dissipated.back(), 1e-10 * E0);
+    else EXPECT_GT(r.dissipated.back(), 0.5 * (1 - e * e) * 4.0 * I_eff * 0.99);
+    if (e == 0.5)
+      std::printf("[   info   ] the stop meets %.4g of the beam's %.4g kg m^2 (the rest is carried by the modes)\n",
+                  I_eff, I_rigid);
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(JointLimits, BadLimitsAreReportedAtTheirKey) {
+  auto err = [](const std::string& limits, const char* type = "revolute") {
+    try {
+      sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - {name: arm, rod: {length: 1.0, diameter: 0.01, mass: 1.0}}
+joints:
+  - {name: R, type: )" + std::string(type) + R"(, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]],)" +
+                    (std::string(type) == "revolute" ? " axes: [[0,1,0],[0,1,0]]," : "") + " limits: " + limits +
+                    R"(}
+simulation: {t_end: 1.0}
+)");
+    } catch (const fc::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(err("{min: 0.5, max: 0.1}").find("expected max > min"), std::string::npos);
+  EXPECT_NE(err("{min: 0.1, restitution: 1.5}").find("restitution"), std::string::npos);
+  EXPECT_NE(err("{min: 0.1}").find("outside the limits"), std::string::npos);
+  EXPECT_NE(err("{restitution: 0.5}").find("expected 'min', 'max'"), std::string::npos);
+  EXPECT_NE(err("{max: 0.1, bounce: 1}").find("bounce"), std::string::npos);
+  EXPECT_NE(err("{max: 0.1}", "spherical").find("only revolute joints have limits"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fc::mbs::test
