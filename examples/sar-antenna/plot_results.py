@@ -10,7 +10,8 @@ Each figure draws every run given, in order:
   fig13   actuator angle, phase 1              (paper: lay-up 1 and lay-up 2)
   phase2  R1, R3 angles and panel angular velocities over the whole run (first run only)
   twist   torsion of panel 3 (needs --body LABEL=panel3.h5 for each flexible run)
-and a summary table of every run is printed (alignment time, oscillation after it).
+and a summary table of every run is printed (alignment time, oscillation after it,
+impacts on the hinge-2/3 stop, smallest truss-panel distance).
 
 The older form  plot_results.py RESULTS.h5 [OUTDIR] [--label NAME] [--compare FILE:LABEL ...]
 still writes fig8, fig9 and phase2. Uses Debian's python3-h5py and
@@ -50,6 +51,12 @@ class Run:
             self.w3 = f["bodies/B3/angular_velocity"][:, 1]
             self.w2 = f["bodies/B2/angular_velocity"][:, 1]
             self.modal3 = f["bodies/B3/modal_coordinates"][:] if "bodies/B3/modal_coordinates" in f else None
+            # Stops (reconstruction v2): impacts on hinge 2/3's coplanar stop
+            # and R1's deployed stop; contact monitor distances.
+            self.h23_impacts = f["joints/H23/limit_impacts"][:] if "joints/H23/limit_impacts" in f else np.zeros((0, 5))
+            self.r1_impacts = f["joints/R1/limit_impacts"][:] if "joints/R1/limit_impacts" in f else np.zeros((0, 5))
+            self.h23 = f["joints/H23/angle"][:] if "joints/H23/angle" in f else None
+            self.distances = {k: f["distances/" + k][:] for k in f["distances"]} if "distances" in f else {}
             status = f.attrs["status"]
             self.status = status.decode() if isinstance(status, bytes) else status
             self.cpu = float(f.attrs.get("cpu_seconds", np.nan))
@@ -57,14 +64,21 @@ class Run:
         self.p1 = self.t <= phase1_end + 1e-9
 
     def alignment(self):
-        """First time the knee B7/B8 reaches the straight position (R3 = 0), by
-        linear interpolation between samples; None if it never does in phase 1."""
+        """Time of the knee's closest approach to straight: its first zero
+        (v1 geometry, linear interpolation between samples) or, in v2 where the
+        knee never straightens, its first local minimum below 0.2 rad
+        (parabola through the three samples); None if neither in phase 1."""
         t, r = self.t[self.p1], self.r3[self.p1]
         s = np.nonzero(np.sign(r[:-1]) * np.sign(r[1:]) <= 0)[0]
-        if len(s) == 0:
+        if len(s):
+            k = s[0]
+            return t[k] + (t[k + 1] - t[k]) * r[k] / (r[k] - r[k + 1]) if r[k] != r[k + 1] else t[k]
+        m = np.nonzero((r[1:-1] < r[:-2]) & (r[1:-1] <= r[2:]) & (r[1:-1] < 0.2))[0]
+        if len(m) == 0:
             return None
-        k = s[0]
-        return t[k] + (t[k + 1] - t[k]) * r[k] / (r[k] - r[k + 1]) if r[k] != r[k + 1] else t[k]
+        k = m[0] + 1
+        den = r[k - 1] - 2 * r[k] + r[k + 1]
+        return t[k] + 0.5 * (t[k] - t[k - 1]) * (r[k - 1] - r[k + 1]) / den if den > 0 else t[k]
 
     def after_alignment(self):
         """Peak-to-peak of R3 and largest |omega3| between alignment and the end of phase 1."""
@@ -112,7 +126,10 @@ def angle_figure(runs, outdir, name, mark_fig10=False):
         tag = f"alignment {ta:.2f} s" if ta is not None else "no alignment"
         ax.plot(r.t[r.p1], r.r3[r.p1], color=f"C{i}", lw=1.0, label=f"{r.label} ({tag})")
         if ta is not None:
-            ax.plot([ta], [0.0], "o", color=f"C{i}", ms=4)
+            ax.plot([ta], [np.interp(ta, r.t, r.r3)], "o", color=f"C{i}", ms=4)
+        for imp in r.h23_impacts:
+            if imp[0] <= 10.0:
+                ax.axvline(imp[0], color=f"C{i}", lw=0.5, ls="-.")
     ax.axvline(PAPER_ALIGNMENT_S, color="gray", ls="--", lw=0.8, label="paper: alignment at 5.5 s")
     if mark_fig10:
         for tt in PAPER_FIG10_S:
@@ -162,14 +179,24 @@ def twist_figure(runs, bodies, outdir):
 
 
 def summary(runs):
-    print(f"{'run':<22} {'alignment [s]':>13} {'R3 p-p after [rad]':>19} {'max|w3| after':>14} "
-          f"{'R3(10 s) [rad]':>15} {'cpu [s]':>8}  status")
+    print(f"{'run':<22} {'alignment [s]':>13} {'R3 min [rad]':>12} {'R3 p-p after [rad]':>19} {'max|w3| after':>14} "
+          f"{'R3(10 s) [rad]':>15} {'H23 impacts (t, rate-, rate+)':>34} {'R1 stop [s]':>11} {'cpu [s]':>8}  status")
     for r in runs:
         ta = r.alignment()
         pp, wm = r.after_alignment()
         k10 = np.argmin(np.abs(r.t - 10.0))
-        print(f"{r.label:<22} {('%.3f' % ta) if ta is not None else '-':>13} {pp:>19.4f} {wm:>14.3f} "
-              f"{r.r3[k10]:>15.4f} {r.cpu:>8.2f}  {r.status}")
+        rmin = np.interp(ta, r.t, r.r3) if ta is not None else np.nan
+        imps = "; ".join(f"{i[0]:.3f} {i[1]:.3f} {i[2]:.3f}" for i in r.h23_impacts[:2]) or "-"
+        if len(r.h23_impacts) > 2:
+            imps += f" (+{len(r.h23_impacts) - 2})"
+        r1 = f"{r.r1_impacts[0][0]:.3f}" if len(r.r1_impacts) else "-"
+        print(f"{r.label:<22} {('%.3f' % ta) if ta is not None else '-':>13} {rmin:>12.4f} {pp:>19.4f} {wm:>14.3f} "
+              f"{r.r3[k10]:>15.4f} {imps:>34} {r1:>11} {r.cpu:>8.2f}  {r.status}")
+    for r in runs:
+        if r.distances:
+            closest = ", ".join(f"{k} {1e3 * d.min():.1f} mm at {r.t[np.argmin(d)]:.2f} s"
+                                for k, d in sorted(r.distances.items(), key=lambda kv: kv[1].min())[:3])
+            print(f"{r.label}: smallest truss-panel distances (axis to mid-plane): {closest}")
 
 
 def parse_spec(spec):
