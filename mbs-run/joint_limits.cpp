@@ -113,6 +113,8 @@ void StopMonitor::start(System& sys, double t, VectorXd& y, std::vector<std::str
 std::optional<StopEvent> StopMonitor::locate(System& sys, const Dense& dense, double t0, const VectorXd& y0, double t1,
                                              const VectorXd& y1) {
   std::optional<StopEvent> best;
+  // Points at which a free joint's angle is checked inside a step.
+  constexpr int kScanPoints = 8;
   auto consider = [&](StopEvent ev) {
     if (!best || ev.time < best->time) best = ev;
   };
@@ -134,21 +136,45 @@ std::optional<StopEvent> StopMonitor::locate(System& sys, const Dense& dense, do
         const double bound = side < 0 ? lim.min : lim.max;
         // Penetration (> 0 beyond the stop).
         auto pen = [&](const VectorXd& y) { return side * (sys.jointAngle(j, y) - bound); };
-        const double p0 = pen(y0), p1 = pen(y1);
-        if (!(p1 > 0.0)) continue;
         StopEvent ev;
         ev.kind = StopEvent::Impact;
         ev.joint = j;
         ev.side = side;
-        if (p0 >= 0.0) {
-          // Already on the stop at t0 (a released or rebounding joint within
-          // rounding of it) and going further in: the impact is at t0.
-          if (!(p1 > p0)) continue;
-          ev.time = t0;
-        } else {
-          ev.time = bisect([&](double t) { return pen(dense(t)) > 0.0; }).first;
+        double ta = t0, pa = pen(y0);
+        if (pa > 0.0) {
+          // Beyond the stop at t0 by rounding (a located impact leaves it on
+          // the admissible side, a projection may not): an impact now if
+          // moving in, else it is leaving and the scan starts once it is out.
+          // (A rate below atol is a joint just released at rest, not an impact.)
+          if (side * angleRate(sys, j, y0) > angle_tol_) {
+            ev.time = t0;
+            consider(ev);
+            continue;
+          }
         }
-        consider(ev);
+        // Scan the step on the dense output (a flexible hinge's angle can dip
+        // in and out within one step: its ends alone would miss it, or, just
+        // after a rebound, see only the second contact): the first interval
+        // from admissible to penetrated is bisected.
+        const int n = kScanPoints;
+        bool found = false;
+        for (int k = 1; k <= n && !found; ++k) {
+          const double tb = k == n ? t1 : t0 + (t1 - t0) * k / n;
+          const double pb = k == n ? pen(y1) : pen(dense(tb));
+          if (pa <= 0.0 && pb > 0.0) {
+            const double t_lo = ta, t_hi = tb;
+            double a = t_lo, b = t_hi;
+            for (int it = 0; it < 200 && b - a > 4e-16 * std::max(1.0, std::abs(b)); ++it) {
+              const double mid = 0.5 * (a + b);
+              (pen(dense(mid)) > 0.0 ? b : a) = mid;
+            }
+            ev.time = a;
+            found = true;
+          }
+          ta = tb;
+          pa = pb;
+        }
+        if (found) consider(ev);
       }
     } else {
       const double tol = release_tol_[j];
