@@ -7,9 +7,13 @@
 //   each flight returns at the rate it left (so the impact rates follow e^k
 //   and the rise heights e^2k), rests after the number of bounces the rest
 //   rule predicts, and then the stop holds the static torque m g L/2 cos;
+// - a stop_only revolute beside two spherical joints on its axis (the
+//   flexible SAR's hinge) gives the same impact;
 // - energy over many elastic (e = 1) impacts between two stops is conserved;
 // - a plastic stop holds a body pushed into it (statics) and lets it go at
 //   the moment a pull exceeds the push, the motion after that in closed form;
+// - a latch (an angle-crossing event that locks) stops the joint at the
+//   crossing with the plastic loss in the dissipated energy;
 // - two free bodies colliding at an internal stop keep their linear and
 //   angular momentum (the impulse is internal: only the constrained system's
 //   momentum balance can give that);
@@ -178,6 +182,38 @@ TEST(JointLimits, PendulumBouncesWithRestitutionThenRests) {
   EXPECT_NEAR(r.dissipated.back(), kG * 0.5 * std::sin(bs), 1e-6);  // all the fall's energy
 }
 
+TEST(JointLimits, StopOnlyJointOnAHingeOfTwoSphericals) {
+  // The flexible SAR's hinge 2/3: two spherical joints on the hinge line hold
+  // the bodies, a stop_only revolute on the same line carries the stop. On
+  // the rigid pendulum it must give the revolute's closed forms.
+  const Results r = simulate(sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: arm
+    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
+    position: [0.5, 0, 0]
+joints:
+  - {name: Sa, type: spherical, bodies: [ground, arm], points: [[0, 0.1, 0], [-0.5, 0.1, 0]]}
+  - {name: Sb, type: spherical, bodies: [ground, arm], points: [[0, -0.1, 0], [-0.5, -0.1, 0]]}
+  - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]],
+     stop_only: true, limits: {max: 1.0471975511965976, restitution: 0.5}}
+forces:
+  - {name: g, type: gravity, g: [0, 0, -9.81]}
+simulation: {t_end: 1.0, output_step: 0.01, rtol: 1.0e-9}
+)"),
+                             {true});
+  ASSERT_EQ(r.status, "completed");
+  const int R = 2;
+  ASSERT_GE(r.limit_impacts[R].size(), 2u);
+  const double k = kG * 0.5 / rodInertia();
+  const double w0 = std::sqrt(2 * k * std::sin(M_PI / 3));
+  EXPECT_NEAR(r.limit_impacts[R][0][0], fallTime(M_PI / 3), 1e-7);
+  EXPECT_NEAR(r.limit_impacts[R][0][1], w0, 1e-7);
+  EXPECT_NEAR(r.limit_impacts[R][0][2], -0.5 * w0, 1e-7);
+  EXPECT_NEAR(r.limit_impacts[R][1][1], 0.5 * w0, 1e-6);
+  EXPECT_LT(r.max_violation, 1e-8);
+}
+
 TEST(JointLimits, ElasticImpactsConserveEnergy) {
   // Between stops at -0.5 and 0.8 rad, thrown upward at 8 rad/s so that it
   // reaches both, elastic: it bounces for ever, ~50 impacts in 8 s.
@@ -258,6 +294,33 @@ simulation: {t_end: 1.5, output_step: 0.01, rtol: 1.0e-10}
       EXPECT_EQ(l.rfind("t=1:", 0), 0u) << l;
     }
   EXPECT_TRUE(released);
+}
+
+TEST(JointLimits, LatchEventLocksWithAPlasticLoss) {
+  // A latch is an angle-crossing event that locks the joint: the rotor
+  // (I_y = 0.3, 2 rad/s, no loads) reaches 1 rad at t = 0.5 exactly and stops
+  // there; its kinetic energy 1/2 I w^2 = 0.6 J goes to the dissipated energy.
+  const Results r = simulate(sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: rotor
+    rigid: {mass: 2.0, inertia: [[0.2,0,0],[0,0.3,0],[0,0,0.2]]}
+    angular_velocity: [0, 2.0, 0]
+joints:
+  - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]]}
+events:
+  - {joint: R, angle: 1.0, direction: rising, lock: [R]}
+simulation: {t_end: 1.0, output_step: 0.05, rtol: 1.0e-10}
+)"),
+                             {true});
+  ASSERT_EQ(r.status, "completed");
+  for (std::size_t n = 0; n < r.time.size(); ++n) {
+    const double t = r.time[n];
+    const double expect = t < 0.5 ? 2.0 * t : 1.0;
+    EXPECT_NEAR(r.joint_angle[0][n], expect, 1e-9) << t;
+    EXPECT_NEAR(r.kinetic[n] + r.dissipated[n], 0.6, 1e-9) << t;
+  }
+  EXPECT_NEAR(r.dissipated.back(), 0.6, 1e-9);
 }
 
 TEST(JointLimits, InternalImpactKeepsMomentum) {
