@@ -13,6 +13,7 @@
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
+#include "fe-prep/xdmf_writer.h"
 
 namespace {
 
@@ -70,6 +71,7 @@ int main(int argc, char** argv) {
       fc::Provenance prov;
       prov.inputs_sha256 = fc::sha256Files(spec.input_files);
       fc::writeFlexBody(output, r.body, fc::computeInertiaInvariants(r.body), prov);
+      fc::feprep::writeBodyXdmf(output, r.body);  // after the .h5: ParaView view of it
       printSummary(spec, r, output);
     }
     return 0;
