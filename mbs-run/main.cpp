@@ -8,6 +8,7 @@
 #include "common/cli.h"
 #include "common/files.h"
 #include "common/version.h"
+#include "mbs-run/animation.h"
 #include "mbs-run/constraints.h"
 #include "mbs-run/results.h"
 #include "mbs-run/scene.h"
@@ -73,7 +74,8 @@ int main(int argc, char** argv) {
   CLI::App app{"mbs-run: multibody dynamics of rigid (and flexible) bodies with joints, actuators and events"};
   std::string input, output, csv, channels;
   double t_end = -1, rtol = -1;
-  std::string integrator;
+  std::string integrator, animation;
+  int animation_every = 1;
   bool quiet = false;
   app.add_option("scene", input, "scene YAML file (contracts.md, mbs-run)")->required();
   app.add_option("-o,--output", output, "results file to write (HDF5, results/1)")->required();
@@ -85,6 +87,13 @@ int main(int argc, char** argv) {
   app.add_option("--channels", channels,
                  "comma-separated channels for --csv, e.g. joints/R3/angle,bodies/B3/angular_velocity "
                  "(default: revolute angles and energies)");
+  app.add_option("--animation", animation,
+                 "also write a ParaView animation R.pvd (and the folder R/) from the results file after the run")
+      ->check([](const std::string& p) {
+        return p.size() > 4 && p.compare(p.size() - 4, 4, ".pvd") == 0 ? "" : "expected a file name ending in .pvd";
+      });
+  app.add_option("--animation-every", animation_every, "write every N-th output time to the animation")
+      ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
   app.set_version_flag("--version", std::string("mbs-run ") + fc::version());
   fc::addInspectOption(app, "mbs-run");
@@ -115,6 +124,11 @@ int main(int argc, char** argv) {
     fc::mbs::writeResults(output, model, r, fc::sha256File(input));
     if (!csv.empty()) fc::mbs::writeCsv(csv, model, r, chosen);
     printSummary(model, r, output);
+    if (!animation.empty()) {
+      const fc::mbs::AnimationSummary a = fc::mbs::writeAnimation(animation, input, model, output, animation_every);
+      std::printf("  animation %s: %d frames of %d bodies (files in %s)\n", animation.c_str(), a.frames, a.bodies,
+                  a.folder.c_str());
+    }
     return r.status == "completed" ? 0 : 3;
   });
 }
