@@ -8,7 +8,7 @@ if [ -z "$pvpython" ] || ! command -v "$pvpython" >/dev/null 2>&1; then
   pvpython=$(command -v pvpython || true)
 fi
 if [ -z "$pvpython" ]; then
-  echo "pvpython not found (Debian package paraview): skipped"
+  echo "pvpython not found (Debian package python3-paraview): skipped"
   exit 77
 fi
 cd "$work"
