@@ -7,8 +7,11 @@ PKGS=(cmake g++ make pkg-config
       libeigen3-dev petsc-dev slepc-dev libsuitesparse-dev libhdf5-openmpi-dev openmpi-bin
       libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
       libgtest-dev libgmock-dev libbenchmark-dev
-      hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml
-      python3-paraview)   # pvpython (pulls in paraview): the test that loads BODY.xdmf and the animation
+      hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml)
+# --with-paraview (what CI uses, .ci/test.sh): pvpython, so that the test loading
+# BODY.xdmf and the animation in ParaView runs instead of being skipped
+# (python3-paraview pulls in paraview, about 0.5 GB).
+if [ "${1:-}" = "--with-paraview" ]; then PKGS+=(python3-paraview); fi
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
