@@ -233,6 +233,7 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   writeProvenance(f, "flexbody/" + std::to_string(kFormatVersion), prov.tool, prov.inputs_sha256);
   if (!prov.version.empty()) f.setAttribute("/", "version", prov.version);
   f.setAttribute("/", "name", body.name);
+  if (!body.reduction.empty()) f.setAttribute("/", "reduction", body.reduction);
 
   f.writeMatrix("/mesh/nodes", body.nodes);
   for (const auto& [type, conn] : body.elements) f.writeIntMatrix("/mesh/" + type, conn);
@@ -311,6 +312,7 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
     out.provenance.inputs_sha256 = f.stringAttribute("/", "inputs_sha256");
   FlexBody& b = out.body;
   if (f.hasAttribute("/", "name")) b.name = f.stringAttribute("/", "name");
+  if (f.hasAttribute("/", "reduction")) b.reduction = f.stringAttribute("/", "reduction");
 
   out.modes_in_file = in_file;
   const int nm = n_modes < 0 ? in_file : n_modes;

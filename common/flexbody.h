@@ -60,6 +60,9 @@ struct FlexBody {
   Eigen::Matrix3d inertia_tensor = Eigen::Matrix3d::Zero();    // about the body origin, undeformed [kg m^2]
   // The three above are the simulated body's (what the invariants imply). The exact
   // continuum values, written under /inertia/exact/ when they differ from those.
+  // Which basis the shapes are (root attribute `reduction`): "free: N shapes" or
+  // "craig_bampton: ... = N shapes" (docs/fe-prep.md); empty when unknown.
+  std::string reduction;
   bool has_exact_inertia = false;
   double exact_mass = 0.0;
   Eigen::Vector3d exact_center_of_mass = Eigen::Vector3d::Zero();

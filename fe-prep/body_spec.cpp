@@ -163,7 +163,7 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
 
   const InputNode b = root["body"];
-  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass"});
+  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction"});
   spec.name = b.string("name", "body");
   if (b.has("shell") == b.has("beam")) b.fail("expected exactly one of shell: or beam:");
   if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
@@ -266,6 +266,11 @@ BodySpec parseBodySpec(const InputNode& root) {
   else if (mass == "lumped_moments") spec.lumped = spec.moment_lumping = true;
   else if (mass == "consistent") spec.lumped = false, spec.moment_lumping = true;
   else b["mass"].fail("unknown mass '" + mass + "', expected lumped, lumped_moments or consistent");
+  const std::string reduction = b.string("reduction", "free");
+  if (reduction == "craig_bampton") spec.craig_bampton = true;
+  else if (reduction != "free") b["reduction"].fail("unknown reduction '" + reduction + "', expected free or craig_bampton");
+  if (spec.craig_bampton && spec.reference.empty())
+    b["reduction"].fail("craig_bampton needs its boundary in reference: (clamp: or pin: the interfaces where the body is joined)");
   return spec;
 }
 

@@ -69,6 +69,9 @@ struct BodySpec {
   // the invariants) moved between nodes so that the body's mass, first and second
   // moments are exact (mass_lumping.h); with lumped_moments also in the eigenproblem.
   bool moment_lumping = true;
+  // reduction: craig_bampton: constraint modes of the boundary (the reference
+  // conditions) plus `modes` fixed-interface modes, diagonalised (craig_bampton.h).
+  bool craig_bampton = false;
   std::vector<std::string> input_files;  // the YAML and every file it uses (for the SHA-256)
 };
 

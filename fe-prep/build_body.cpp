@@ -15,6 +15,7 @@
 #include "fe-prep/assembly.h"
 #include "fe-prep/beam_mesher.h"
 #include "fe-prep/body_inertia.h"
+#include "fe-prep/craig_bampton.h"
 #include "fe-prep/interfaces.h"
 #include "fe-prep/reference_conditions.h"
 #include "fe-prep/elements/beam_element.h"
@@ -276,6 +277,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
   // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
   // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
+  Eigen::VectorXd mass_moved;  // the moment correction added to the translational masses (lumped_moments)
   if (spec.moment_lumping) {
     const long n = mesh.nodeCount();
     Eigen::VectorXd m0(n);
@@ -299,6 +301,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     if (ml.applied) {
       const Eigen::VectorXd dm = ml.masses - m0;
       if (spec.lumped) addNodalTranslationalMass(comm, mesh, map, dm, sys.M);
+      if (spec.lumped) mass_moved = dm;
       for (long k = 0; k < n; ++k) sys.lumped.segment<3>(6 * k).array() += dm(k);
     }
   }
@@ -323,11 +326,89 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   res.rigid_share_kept_max = modal.rigid_projection_max;
 
   // --- the body
-  const long nm = modal.eigenvalues.size();
-  body.eigenvalues = modal.eigenvalues;
-  body.frequencies_hz = modal.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
-  body.shapes.resize(6 * mesh.nodeCount(), nm);
-  for (long j = 0; j < nm; ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
+  if (spec.craig_bampton) {
+    // Boundary DOF: every reference condition's rows; lifts that give each a
+    // unit value (rigid patches carry their master's lift to the slaves).
+    const long n = mesh.nodeCount();
+    std::map<long, Eigen::MatrixXd> node_rows;
+    for (const auto& c : conditions) {
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(c.clamp ? 6 : 3, 6);
+      C.leftCols(3).topRows(3).setIdentity();
+      C.topRightCorner(3, 3) = -skew(c.point - mesh.nodes.row(c.node).transpose());
+      if (c.clamp) C.bottomRightCorner(3, 3).setIdentity();
+      auto it = node_rows.find(c.node);
+      if (it == node_rows.end()) {
+        node_rows.emplace(c.node, C);
+      } else {
+        Eigen::MatrixXd S(it->second.rows() + C.rows(), 6);
+        S << it->second, C;
+        it->second = S;
+      }
+    }
+    std::vector<Eigen::VectorXd> lifts;
+    for (const auto& [node, C] : node_rows) {
+      const std::size_t first = lifts.size();
+      appendLifts(n, {node}, C, lifts);
+      for (const auto& rc : couplings) {
+        if (rc.master != node) continue;
+        for (std::size_t j = first; j < lifts.size(); ++j)
+          for (long sl : rc.slaves)
+            lifts[j].segment<6>(6 * sl) = rigidTransfer((mesh.nodes.row(sl) - mesh.nodes.row(node)).transpose()) *
+                                          lifts[j].segment<6>(6 * node);
+      }
+    }
+    for (const auto& pc : patch_conditions) appendLifts(n, pc.nodes, pc.C, lifts);
+    CraigBamptonInput cb;
+    cb.lifts.resize(6 * n, static_cast<long>(lifts.size()));
+    for (std::size_t j = 0; j < lifts.size(); ++j) cb.lifts.col(static_cast<long>(j)) = lifts[j];
+    // K l_j from the elements that touch the lifts (every rank, the mesh is whole).
+    std::vector<char> support(static_cast<std::size_t>(n), 0);
+    for (long k = 0; k < n; ++k) support[static_cast<std::size_t>(k)] = cb.lifts.middleRows(6 * k, 6).cwiseAbs().maxCoeff() > 0.0;
+    cb.K_lifts = Eigen::MatrixXd::Zero(6 * n, cb.lifts.cols());
+    ElementResult er;
+    for (long e = 0; e < n_el; ++e) {
+      const bool touches = e < n_tri ? std::any_of(mesh.triangles[static_cast<std::size_t>(e)].begin(), mesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
+                                     : std::any_of(mesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), mesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
+      if (!touches) continue;
+      kernel(e, er);
+      const long a = static_cast<long>(er.nodes.size());
+      Eigen::MatrixXd Le(6 * a, cb.lifts.cols());
+      for (long i = 0; i < a; ++i) Le.middleRows(6 * i, 6) = cb.lifts.middleRows(6 * er.nodes[static_cast<std::size_t>(i)], 6);
+      const Eigen::MatrixXd KLe = er.K * Le;
+      for (long i = 0; i < a; ++i) cb.K_lifts.middleRows(6 * er.nodes[static_cast<std::size_t>(i)], 6) += KLe.middleRows(6 * i, 6);
+    }
+    // The free body (its couplings only) for the reduced K and M.
+    const DofMap free_map = buildDofMap(mesh, {}, couplings, {});
+    AssembledSystem free_sys;
+    assemble(comm, mesh, free_map, n_el, kernel, free_sys);
+    if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
+    cb.K_fixed = sys.K;
+    cb.fixed = &map;
+    cb.K_free = free_sys.K;
+    cb.M_free = free_sys.M;
+    cb.free = &free_map;
+    cb.normal.resize(6 * n, modal.eigenvalues.size());
+    for (long j = 0; j < modal.eigenvalues.size(); ++j) cb.normal.col(j) = map.expand(modal.vectors.col(j));
+    cb.rigid = admissibleRigidModes(mesh, {});
+    const CraigBamptonResult cbr = craigBampton(comm, cb);
+    body.eigenvalues = cbr.eigenvalues;
+    body.shapes = cbr.shapes;
+    res.constraint_modes = cb.lifts.cols();
+    res.normal_modes = modal.eigenvalues.size();
+    res.rigid_removed = cbr.rigid_eigenvalues.size();
+    res.rigid_eigenvalues = cbr.rigid_eigenvalues;
+    res.rigid_share_removed_min = cbr.rigid_share_removed_min;
+    res.rigid_share_kept_max = cbr.rigid_share_kept_max;
+    body.reduction = "craig_bampton: " + std::to_string(res.constraint_modes) + " constraint modes + " +
+                     std::to_string(res.normal_modes) + " fixed-interface modes - " +
+                     std::to_string(res.rigid_removed) + " rigid = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
+  } else {
+    body.eigenvalues = modal.eigenvalues;
+    body.shapes.resize(6 * mesh.nodeCount(), modal.eigenvalues.size());
+    for (long j = 0; j < modal.eigenvalues.size(); ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
+    body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes";
+  }
+  body.frequencies_hz = body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
   for (std::size_t k = 0; k < body.interfaces.size(); ++k)
     body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);
   IndexMatrix conn;

@@ -25,6 +25,7 @@ struct BuildResult {
   long dofs = 0;          // unconstrained: 6 n_nodes
   long reduced_dofs = 0;  // after the reference conditions
   long rigid_removed = 0;
+  long constraint_modes = 0, normal_modes = 0;  // reduction: craig_bampton
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
   // Moment-consistent lumping (fe-prep/mass_lumping.h): applied, and the smallest

@@ -54,7 +54,9 @@ FlexibleBodyData loadFlexibleBody(const InputNode& flexible) {
     file_node.fail(std::string("expected a flexible body file written by fe-prep: ") + e.what());
   }
   int modes = available;
-  if (auto m = flexible.get("modes")) {
+  if (auto m = flexible.get("modes"); m && !(m->isScalar() && m->asString() == "all")) {
+    // modes: all (the default) keeps every shape: a Craig-Bampton basis is
+    // statically complete at its interfaces only whole.
     const long asked = m->asInt();
     if (asked < 0) m->fail("expected a number of modes >= 0, got " + std::to_string(asked));
     if (asked > available)

@@ -1,0 +1,175 @@
+#include "fe-prep/craig_bampton.h"
+
+#include <petscksp.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace fc::feprep {
+namespace {
+
+void check(PetscErrorCode ierr, const char* what) {
+  if (ierr) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
+}
+
+// PETSc handles released on every path.
+struct VecH {
+  Vec v = nullptr;
+  ~VecH() {
+    if (v) VecDestroy(&v);
+  }
+};
+struct KspH {
+  KSP k = nullptr;
+  ~KspH() {
+    if (k) KSPDestroy(&k);
+  }
+};
+struct ScatterH {
+  VecScatter s = nullptr;
+  ~ScatterH() {
+    if (s) VecScatterDestroy(&s);
+  }
+};
+
+void setLocal(Vec x, const Eigen::VectorXd& v) {
+  PetscInt lo, hi;
+  check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
+  PetscScalar* a;
+  check(VecGetArray(x, &a), "VecGetArray");
+  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = v(i);
+  check(VecRestoreArray(x, &a), "VecRestoreArray");
+}
+
+Eigen::VectorXd gatherAll(Vec x) {
+  ScatterH sc;
+  VecH all;
+  check(VecScatterCreateToAll(x, &sc.s, &all.v), "VecScatterCreateToAll");
+  check(VecScatterBegin(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  PetscInt n;
+  check(VecGetSize(all.v, &n), "VecGetSize");
+  const PetscScalar* a;
+  check(VecGetArrayRead(all.v, &a), "VecGetArrayRead");
+  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(a, n);
+  check(VecRestoreArrayRead(all.v, &a), "VecRestoreArrayRead");
+  return out;
+}
+
+// A v for a whole vector v on every rank; the whole product on every rank.
+Eigen::VectorXd multiply(Mat A, const Eigen::VectorXd& v) {
+  VecH x, y;
+  check(MatCreateVecs(A, &x.v, &y.v), "MatCreateVecs");
+  setLocal(x.v, v);
+  check(MatMult(A, x.v, y.v), "MatMult");
+  return gatherAll(y.v);
+}
+
+// T^T f: a full nodal force vector to the reduced DOF of `map`.
+Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(map.reduced);
+  for (std::size_t n = 0; n < map.T.size(); ++n) {
+    const auto& ix = map.idx[n];
+    if (ix.empty()) continue;
+    const Eigen::VectorXd g = map.T[n].transpose() * f.segment<6>(6 * static_cast<long>(n));
+    for (std::size_t j = 0; j < ix.size(); ++j) r(ix[j]) += g(static_cast<long>(j));
+  }
+  return r;
+}
+
+}  // namespace
+
+void appendLifts(long n_nodes, const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Eigen::VectorXd>& lifts) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd s = svd.singularValues();
+  for (long k = 0; k < s.size(); ++k) {
+    if (s(k) <= 1e-10 * s(0)) break;
+    // The k-th independent boundary combination: C l = u_k, l = v_k / s_k.
+    const Eigen::VectorXd l = svd.matrixV().col(k) / s(k);
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(6 * n_nodes);
+    for (std::size_t i = 0; i < nodes.size(); ++i) full.segment<6>(6 * nodes[i]) = l.segment<6>(6 * static_cast<long>(i));
+    lifts.push_back(full);
+  }
+}
+
+CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
+  const long nb = in.lifts.cols(), nk = in.normal.cols(), N = in.lifts.rows();
+  CraigBamptonResult out;
+  // Constraint modes: one factorisation of the fixed-interface K, nb solves.
+  out.constraint_modes.resize(N, nb);
+  {
+    KspH ksp;
+    check(KSPCreate(comm, &ksp.k), "KSPCreate");
+    check(KSPSetOperators(ksp.k, in.K_fixed, in.K_fixed), "KSPSetOperators");
+    check(KSPSetType(ksp.k, KSPPREONLY), "KSPSetType");
+    PC pc;
+    check(KSPGetPC(ksp.k, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
+    VecH b, x;
+    check(MatCreateVecs(in.K_fixed, &x.v, &b.v), "MatCreateVecs");
+    for (long j = 0; j < nb; ++j) {
+      setLocal(b.v, -reduceForce(*in.fixed, in.K_lifts.col(j)));
+      check(KSPSolve(ksp.k, b.v, x.v), "KSPSolve");
+      KSPConvergedReason why;
+      check(KSPGetConvergedReason(ksp.k, &why), "KSPGetConvergedReason");
+      if (why < 0)
+        throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
+                                 "rigid motions free: clamp the boundary interfaces, or pin at least three)");
+      out.constraint_modes.col(j) = in.lifts.col(j) + in.fixed->expand(gatherAll(x.v));
+    }
+  }
+  // The basis in the free body's DOF, the reduced matrices, their eigenvectors.
+  Eigen::MatrixXd B(N, nb + nk);
+  B << out.constraint_modes, in.normal;
+  Eigen::MatrixXd Bf(in.free->reduced, nb + nk), KB(in.free->reduced, nb + nk), MB(in.free->reduced, nb + nk);
+  for (long j = 0; j < nb + nk; ++j) {
+    Bf.col(j) = in.free->restrict(B.col(j));
+    KB.col(j) = multiply(in.K_free, Bf.col(j));
+    MB.col(j) = multiply(in.M_free, Bf.col(j));
+  }
+  Eigen::MatrixXd Kr = Bf.transpose() * KB, Mr = Bf.transpose() * MB;
+  Kr = 0.5 * (Kr + Kr.transpose()).eval();
+  Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);
+  if (es.info() != Eigen::Success) throw std::runtime_error("craig_bampton: the reduced eigenproblem failed");
+  // Rigid share of each eigenvector: b^T G^-1 b, b = R^T M (B x), G = R^T M R.
+  const long r = in.rigid.cols();
+  Eigen::MatrixXd MRf(in.free->reduced, r), Rf(in.free->reduced, r);
+  for (long j = 0; j < r; ++j) {
+    Rf.col(j) = in.free->restrict(in.rigid.col(j));
+    MRf.col(j) = multiply(in.M_free, Rf.col(j));
+  }
+  const Eigen::MatrixXd G = Rf.transpose() * MRf;
+  const Eigen::MatrixXd Ginv = G.ldlt().solve(Eigen::MatrixXd::Identity(r, r));
+  const Eigen::MatrixXd X = es.eigenvectors();  // X^T Mr X = I
+  const Eigen::MatrixXd BtMR = Bf.transpose() * MRf;  // (nb + nk, r)
+  std::vector<long> kept;
+  std::vector<double> removed;
+  for (long k = 0; k < X.cols(); ++k) {
+    const Eigen::VectorXd bk = BtMR.transpose() * X.col(k);
+    const double share = bk.dot(Ginv * bk);
+    if (share > 0.5) {
+      removed.push_back(es.eigenvalues()(k));
+      out.rigid_share_removed_min = std::min(out.rigid_share_removed_min, share);
+    } else {
+      kept.push_back(k);
+      out.rigid_share_kept_max = std::max(out.rigid_share_kept_max, share);
+    }
+  }
+  out.eigenvalues.resize(static_cast<long>(kept.size()));
+  out.shapes.resize(N, static_cast<long>(kept.size()));
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    out.eigenvalues(static_cast<long>(i)) = es.eigenvalues()(kept[i]);
+    Eigen::VectorXd x = B * X.col(kept[i]);
+    Eigen::Index imax;
+    x.cwiseAbs().maxCoeff(&imax);
+    if (x(imax) < 0) x = -x;  // the modal solver's sign convention
+    out.shapes.col(static_cast<long>(i)) = x;
+  }
+  out.rigid_eigenvalues = Eigen::Map<const Eigen::VectorXd>(removed.data(), static_cast<long>(removed.size()));
+  return out;
+}
+
+}  // namespace fc::feprep
