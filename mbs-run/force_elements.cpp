@@ -139,4 +139,17 @@ void addForceElement(const Model& model, const ForceElement& fe, const std::vect
   }
 }
 
+std::string forceElementLabel(const Model& model, int index) {
+  const ForceElement& fe = model.forces[index];
+  const char* type = "";
+  switch (fe.type) {
+    case ForceType::Gravity: type = "gravity"; break;
+    case ForceType::RotationalSpringDamper: type = "rotational_spring_damper"; break;
+    case ForceType::TranslationalSpringDamper: type = "translational_spring_damper"; break;
+    case ForceType::ConstantForce: type = "force"; break;
+    case ForceType::ConstantTorque: type = "torque"; break;
+  }
+  return (fe.name.empty() ? "#" + std::to_string(index + 1) : fe.name) + " (" + type + ")";
+}
+
 }  // namespace fc::mbs

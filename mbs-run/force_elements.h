@@ -6,6 +6,7 @@
 // potential energy, so that force and potential cannot drift apart.
 #include <Eigen/Dense>
 
+#include <string>
 #include <vector>
 
 #include "mbs-run/constraints.h"
@@ -31,5 +32,8 @@ enum class ForceQuantity { ForcesAndPowers, Potential };
 // when forces are asked for.
 void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
                      const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums);
+
+// "NAME (type)", or "#k (type)" for an unnamed element, for messages.
+std::string forceElementLabel(const Model& model, int index);
 
 }  // namespace fc::mbs

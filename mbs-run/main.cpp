@@ -1,12 +1,13 @@
 // mbs-run SCENE.yaml -o RESULTS.h5: multibody dynamics of a scene.
 #include <algorithm>
 #include <CLI/CLI.hpp>
-#include <csignal>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 
 #include "common/cli.h"
 #include "common/files.h"
+#include "common/termination.h"
 #include "common/version.h"
 #include "mbs-run/animation.h"
 #include "mbs-run/constraints.h"
@@ -15,8 +16,6 @@
 #include "mbs-run/simulation.h"
 
 namespace {
-
-extern "C" void onSignal(int sig) { fc::mbs::g_stop_signal.store(sig); }
 
 std::vector<std::string> splitComma(const std::string& s) {
   std::vector<std::string> out;
@@ -27,7 +26,25 @@ std::vector<std::string> splitComma(const std::string& s) {
   return out;
 }
 
-void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std::string& out) {
+// Hands each row to every writer.
+class Fanout : public fc::mbs::SampleSink {
+ public:
+  explicit Fanout(std::vector<fc::mbs::SampleSink*> sinks) : sinks_(std::move(sinks)) {}
+  void write(const fc::mbs::Sample& s) override {
+    for (fc::mbs::SampleSink* k : sinks_)
+      if (k) k->write(s);
+  }
+
+ private:
+  std::vector<fc::mbs::SampleSink*> sinks_;
+};
+
+void printPeak(const char* what, const fc::mbs::RunSummary::Peak& p, const char* unit) {
+  if (p.where.empty() && p.value == 0.0) return;
+  std::printf("  largest %s %.4g %s (%s, t = %.6g s)\n", what, p.value, unit, p.where.c_str(), p.time);
+}
+
+void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out) {
   const double t = r.t_reached;
   std::printf("mbs-run %s: %s -> %s\n", fc::version(), m.source.c_str(), out.c_str());
   std::printf("  status: %s (t = %.6g of %.6g s)\n", r.status.c_str(), t, m.settings.t_end);
@@ -52,19 +69,20 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::Results& r, const std:
               "AL iterations <= %d\n",
               r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.projections,
               r.max_al_iterations);
-  std::printf("  CPU %.3f s, real-time factor %.3g (simulated s per CPU s)\n", r.cpu_seconds,
-              r.cpu_seconds > 0 ? t / r.cpu_seconds : 0.0);
-  std::printf("  largest constraint violation %.3e\n", r.max_violation);
+  std::printf("  CPU %.3f s, real-time factor %.3g (simulated s per CPU s), %ld output rows\n", r.cpu_seconds,
+              r.cpu_seconds > 0 ? t / r.cpu_seconds : 0.0, r.samples);
+  std::printf("  largest constraint violation %.3e (t = %.6g s)\n", r.max_violation, r.peak_violation.time);
   std::printf("  energy balance error %.3e J (%.3e of the largest energy term %.3e J)\n", r.energy_balance_error,
               r.energy_scale > 0 ? r.energy_balance_error / r.energy_scale : 0.0, r.energy_scale);
+  printPeak("reaction force", r.peak_reaction_force, "N");
+  printPeak("reaction torque", r.peak_reaction_torque, "N m");
+  printPeak("modal coordinate", r.peak_modal_coordinate, "kg^1/2 m");
+  for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
-  for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.distances.size(); ++k) {
-    const std::vector<double>& d = r.distances[k];
-    if (d.empty()) continue;
-    const std::size_t i = std::min_element(d.begin(), d.end()) - d.begin();
+  for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.smallest_distance.size(); ++k)
     std::printf("  distance %s-%s: smallest %.4g m at t = %.6g s\n", m.bodies[m.distance_pairs[k][0]].name.c_str(),
-                m.bodies[m.distance_pairs[k][1]].name.c_str(), d[i], r.time[i]);
-  }
+                m.bodies[m.distance_pairs[k][1]].name.c_str(), r.smallest_distance[k].value,
+                r.smallest_distance[k].time);
   for (const std::string& e : r.integrator_log) std::printf("  integrator %s\n", e.c_str());
 }
 
@@ -100,6 +118,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   return fc::guardedMain("mbs-run", [&] {
+    // A termination signal (INT, TERM, HUP, QUIT, ALRM, XCPU, PIPE) is only
+    // recorded: the loop stops at the next step and the file is finished with
+    // status "interrupted by SIGxxx"; a second one exits at once.
+    fc::installTerminationHandlers("mbs-run", fc::TerminationPolicy::Record);
     fc::mbs::Model model = fc::mbs::loadScene(input);
     if (t_end > 0) model.settings.t_end = t_end;
     if (rtol > 0) model.settings.rtol = rtol;
@@ -116,19 +138,35 @@ int main(int argc, char** argv) {
         if (j.type == fc::mbs::JointType::Revolute) chosen.push_back("joints/" + j.name + "/angle");
       for (const char* e : {"energy/kinetic", "energy/potential", "energy/dissipated"}) chosen.push_back(e);
     }
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
+    // Before any computing: the outputs must not destroy an input (the scene,
+    // an included file, a body file) and must be writable.
+    for (const std::string& out : {output, csv}) {
+      if (out.empty()) continue;
+      fc::checkOutputIsNotAnInput(out, fc::inputFilesRead());
+      fc::checkOutputWritable(out);
+    }
+    if (!csv.empty()) fc::checkOutputIsNotAnInput(csv, {output});
+    for (const std::string& w : fc::mbs::samplingWarnings(model))
+      std::fprintf(stderr, "mbs-run: warning: %s\n", w.c_str());
+    const long expected_rows = static_cast<long>(model.settings.t_end / model.settings.output_step) + 2;
+    fc::mbs::ResultsFileWriter file(output, model, expected_rows);
+    std::unique_ptr<fc::mbs::CsvWriter> table;
+    if (!csv.empty()) table = std::make_unique<fc::mbs::CsvWriter>(csv, model, chosen);
+    Fanout sinks({&file, table.get()});
     fc::mbs::RunOptions opt;
     opt.quiet = quiet;
-    const fc::mbs::Results r = fc::mbs::simulate(model, opt);
-    fc::mbs::writeResults(output, model, r, fc::sha256File(input));
-    if (!csv.empty()) fc::mbs::writeCsv(csv, model, r, chosen);
+    const fc::mbs::RunSummary r = fc::mbs::simulate(model, opt, sinks);
+    file.finish(model, r, fc::sha256File(input));
+    if (table) table->finish();
     printSummary(model, r, output);
     if (!animation.empty()) {
       const fc::mbs::AnimationSummary a = fc::mbs::writeAnimation(animation, input, model, output, animation_every);
       std::printf("  animation %s: %d frames of %d bodies (files in %s)\n", animation.c_str(), a.frames, a.bodies,
                   a.folder.c_str());
     }
-    return r.status == "completed" ? 0 : 3;
+    std::fflush(stdout);
+    if (r.status == "completed") return 0;
+    if (const int sig = fc::terminationSignal()) return fc::terminationExitCode(sig);
+    return 3;
   });
 }

@@ -1,85 +1,202 @@
 #include "mbs-run/results.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/files.h"
-#include "common/h5io.h"
 
 namespace fc::mbs {
-
-namespace {
-
-template <int N>
-Eigen::MatrixXd rows(const std::vector<Eigen::Matrix<double, N, 1>>& v) {
-  Eigen::MatrixXd m(v.size(), N);
-  for (std::size_t k = 0; k < v.size(); ++k) m.row(k) = v[k].transpose();
-  return m;
-}
-
-Eigen::VectorXd column(const std::vector<double>& v) {
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
 
 std::string distanceChannel(const Model& m, std::size_t k) {
   return "distances/" + m.bodies[m.distance_pairs[k][0]].name + "-" + m.bodies[m.distance_pairs[k][1]].name;
 }
 
-// Every channel by name, as an (n_out, k) matrix.
-std::vector<std::pair<std::string, Eigen::MatrixXd>> channels(const Model& m, const Results& r) {
-  std::vector<std::pair<std::string, Eigen::MatrixXd>> c;
-  c.emplace_back("time", column(r.time));
+std::vector<Channel> resultChannels(const Model& m) {
+  std::vector<Channel> c;
+  auto vec3 = [&](const std::string& name, auto get) {
+    c.push_back({name, 3, false, [get](const Sample& s, double* out) {
+                   const Eigen::Vector3d v = get(s);
+                   for (int i = 0; i < 3; ++i) out[i] = v[i];
+                 }});
+  };
+  auto scalar = [&](const std::string& name, auto get) {
+    c.push_back({name, 1, true, [get](const Sample& s, double* out) { out[0] = get(s); }});
+  };
+  scalar("time", [](const Sample& s) { return s.time; });
   for (std::size_t k = 0; k < m.bodies.size(); ++k) {
     const std::string b = "bodies/" + m.bodies[k].name + "/";
-    c.emplace_back(b + "position", rows<3>(r.position[k]));
-    c.emplace_back(b + "orientation", rows<4>(r.orientation[k]));
-    c.emplace_back(b + "velocity", rows<3>(r.velocity[k]));
-    c.emplace_back(b + "angular_velocity", rows<3>(r.angular_velocity[k]));
+    vec3(b + "position", [k](const Sample& s) { return s.bodies[k].position; });
+    c.push_back({b + "orientation", 4, false, [k](const Sample& s, double* out) {
+                   for (int i = 0; i < 4; ++i) out[i] = s.bodies[k].orientation[i];
+                 }});
+    vec3(b + "velocity", [k](const Sample& s) { return s.bodies[k].velocity; });
+    vec3(b + "angular_velocity", [k](const Sample& s) { return s.bodies[k].angular_velocity; });
     const int nm = m.bodies[k].modes;
     if (nm > 0) {
-      Eigen::MatrixXd q(r.modal[k].size(), nm), qd(r.modal[k].size(), nm);
-      for (std::size_t i = 0; i < r.modal[k].size(); ++i) {
-        q.row(i) = r.modal[k][i].transpose();
-        qd.row(i) = r.modal_rate[k][i].transpose();
-      }
-      c.emplace_back(b + "modal_coordinates", q);
-      c.emplace_back(b + "modal_velocities", qd);
+      c.push_back({b + "modal_coordinates", nm, false, [k, nm](const Sample& s, double* out) {
+                     for (int i = 0; i < nm; ++i) out[i] = s.bodies[k].modal[i];
+                   }});
+      c.push_back({b + "modal_velocities", nm, false, [k, nm](const Sample& s, double* out) {
+                     for (int i = 0; i < nm; ++i) out[i] = s.bodies[k].modal_rate[i];
+                   }});
     }
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const std::string p = "joints/" + m.joints[j].name + "/";
-    if (m.joints[j].type == JointType::Revolute) c.emplace_back(p + "angle", column(r.joint_angle[j]));
-    c.emplace_back(p + "reaction_force", rows<3>(r.reaction[j]));
-    if (m.joints[j].limits.any() && j < r.limit_state.size()) {
-      c.emplace_back(p + "limit_state", column(std::vector<double>(r.limit_state[j].begin(), r.limit_state[j].end())));
-      c.emplace_back(p + "limit_torque", column(r.limit_torque[j]));
+    if (m.joints[j].type == JointType::Revolute) scalar(p + "angle", [j](const Sample& s) { return s.joints[j].angle; });
+    vec3(p + "reaction_force", [j](const Sample& s) { return s.joints[j].reaction_force; });
+    // A spherical joint transmits no moment (contracts.md: reaction_torque for
+    // every joint that does).
+    if (m.joints[j].type != JointType::Spherical)
+      vec3(p + "reaction_torque", [j](const Sample& s) { return s.joints[j].reaction_torque; });
+    if (m.joints[j].limits.any()) {
+      scalar(p + "limit_state", [j](const Sample& s) { return double(s.joints[j].limit_state); });
+      scalar(p + "limit_torque", [j](const Sample& s) { return s.joints[j].limit_torque; });
     }
   }
-  for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.distances.size(); ++k)
-    c.emplace_back(distanceChannel(m, k), column(r.distances[k]));
-  c.emplace_back("energy/kinetic", column(r.kinetic));
-  c.emplace_back("energy/potential", column(r.potential));
-  c.emplace_back("energy/strain", column(r.strain));
-  c.emplace_back("energy/dissipated", column(r.dissipated));
-  c.emplace_back("energy/applied_work", column(r.applied_work));
-  c.emplace_back("diagnostics/constraint_violation", column(r.violation));
+  for (std::size_t k = 0; k < m.distance_pairs.size(); ++k)
+    scalar(distanceChannel(m, k), [k](const Sample& s) { return s.distances[k]; });
+  scalar("energy/kinetic", [](const Sample& s) { return s.energy.kinetic; });
+  scalar("energy/potential", [](const Sample& s) { return s.energy.potential; });
+  scalar("energy/strain", [](const Sample& s) { return s.energy.strain; });
+  scalar("energy/dissipated", [](const Sample& s) { return s.energy.dissipated; });
+  scalar("energy/applied_work", [](const Sample& s) { return s.energy.applied_work; });
+  scalar("diagnostics/constraint_violation", [](const Sample& s) { return s.violation; });
   return c;
+}
+
+namespace {
+
+// The buffer of rows written at once: about 1 MB whatever the model's width,
+// which also bounds what a stopped run can lose to a SIGKILL since the last flush.
+constexpr unsigned long long kBlockBytes = 1ull << 20;
+constexpr double kFlushSeconds = 10.0;
+
+hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk_rows) {
+  const std::string path = "/" + c.name;
+  const std::size_t slash = path.rfind('/');
+  if (slash > 0) f.createGroup(path.substr(0, slash));
+  const int rank = c.rank1 ? 1 : 2;
+  const hsize_t dims[2] = {0, static_cast<hsize_t>(c.columns)};
+  const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(c.columns)};
+  const hsize_t chunk[2] = {static_cast<hsize_t>(chunk_rows), static_cast<hsize_t>(c.columns)};
+  const hid_t space = H5Screate_simple(rank, dims, maxdims);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, rank, chunk);
+  // Rows arrive in whole blocks, so no chunk cache is needed; HDF5's default
+  // (1 MB per dataset) would hold ~1 MB per channel for nothing.
+  const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+  H5Pset_chunk_cache(dapl, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0, H5D_CHUNK_CACHE_W0_DEFAULT);
+  const hid_t d = H5Dcreate2(f.id(), path.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
+  H5Pclose(dapl);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  if (d < 0) throw OutputError(f.path() + ": cannot create " + path + fc::hdf5ErrorReason());
+  return d;
+}
+
+void appendRows(hid_t d, const Channel& c, const std::string& file, unsigned long long at,
+                unsigned long long rows, const double* data) {
+  const int rank = c.rank1 ? 1 : 2;
+  const hsize_t size[2] = {static_cast<hsize_t>(at + rows), static_cast<hsize_t>(c.columns)};
+  const hsize_t start[2] = {static_cast<hsize_t>(at), 0};
+  const hsize_t count[2] = {static_cast<hsize_t>(rows), static_cast<hsize_t>(c.columns)};
+  bool ok = H5Dset_extent(d, size) >= 0;
+  if (ok) {
+    const hid_t fspace = H5Dget_space(d);
+    const hid_t mspace = H5Screate_simple(rank, count, nullptr);
+    ok = fspace >= 0 && mspace >= 0 &&
+         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
+         H5Dwrite(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    if (mspace >= 0) H5Sclose(mspace);
+    if (fspace >= 0) H5Sclose(fspace);
+  }
+  if (!ok) throw OutputError(file + ": cannot write /" + c.name + fc::hdf5ErrorReason());
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += l + "\n";
+  return s;
 }
 
 }  // namespace
 
-void writeResults(const std::string& path, const Model& model, const Results& r,
-                  const std::string& inputs_sha256) {
-  fc::AtomicH5Writer w(path);
-  fc::H5File& f = w.file();
-  fc::writeProvenance(f, "results/1", "mbs-run", inputs_sha256);
-  for (const auto& [name, data] : channels(model, r)) {
-    if (data.cols() == 1) f.writeVector("/" + name, data.col(0));
-    else f.writeMatrix("/" + name, data);
+ResultsFileWriter::ResultsFileWriter(const std::string& path, const Model& model, long expected_rows)
+    : channels_(resultChannels(model)), file_(path) {
+  unsigned long long width = 0;
+  for (const Channel& c : channels_) width += c.columns;
+  block_rows_ = std::max(16ull, kBlockBytes / (8 * std::max(1ull, width)));
+  // Chunks no longer than the run, so that a short run's file stays small.
+  const unsigned long long chunk = std::max(1ull, std::min(block_rows_, static_cast<unsigned long long>(
+                                                                            std::max(1l, expected_rows))));
+  // The chunk indexes grow with the rows; HDF5's metadata cache (up to 32 MB
+  // by default) is capped so that memory stays bounded whatever the output step.
+  H5AC_cache_config_t mdc;
+  mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Fget_mdc_config(file_.file().id(), &mdc) >= 0) {
+    mdc.set_initial_size = true;
+    mdc.initial_size = 1 << 20;
+    mdc.min_size = 1 << 20;
+    mdc.max_size = 4 << 20;
+    H5Fset_mdc_config(file_.file().id(), &mdc);
   }
+  for (const Channel& c : channels_) {
+    datasets_.push_back(createExtendible(file_.file(), c, chunk));
+    buffers_.emplace_back();
+    buffers_.back().reserve(block_rows_ * c.columns);
+  }
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+ResultsFileWriter::~ResultsFileWriter() {
+  for (hid_t d : datasets_)
+    if (d >= 0) H5Dclose(d);
+}
+
+void ResultsFileWriter::write(const Sample& s) {
+  for (std::size_t k = 0; k < channels_.size(); ++k) {
+    std::vector<double>& b = buffers_[k];
+    b.resize(b.size() + channels_[k].columns);
+    channels_[k].read(s, b.data() + b.size() - channels_[k].columns);
+  }
+  ++buffered_;
+  const bool due = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >
+                   kFlushSeconds;
+  if (buffered_ >= block_rows_ || due) writeBlock();
+}
+
+void ResultsFileWriter::writeBlock() {
+  if (buffered_ > 0) {
+    for (std::size_t k = 0; k < channels_.size(); ++k) {
+      appendRows(datasets_[k], channels_[k], file_.temporaryPath(), written_, buffered_, buffers_[k].data());
+      buffers_[k].clear();
+    }
+    written_ += buffered_;
+    buffered_ = 0;
+  }
+  // What is on disk is a valid HDF5 file up to here (HDF5 1.10 has no
+  // single-writer journal: a flush is the consistency point).
+  if (H5Fflush(file_.file().id(), H5F_SCOPE_GLOBAL) < 0)
+    throw OutputError(file_.temporaryPath() + ": cannot flush" + fc::hdf5ErrorReason());
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const std::string& inputs_sha256) {
+  writeBlock();
+  for (hid_t& d : datasets_) {
+    if (H5Dclose(d) < 0) throw OutputError(file_.temporaryPath() + ": cannot close a dataset" + fc::hdf5ErrorReason());
+    d = -1;
+  }
+  fc::H5File& f = file_.file();
+  fc::writeProvenance(f, "results/1", "mbs-run", inputs_sha256);
   // Impacts on stops: one row per impact (time, angle rate before and after,
   // impulse, energy dissipated), written even when there were none.
   for (std::size_t j = 0; j < model.joints.size() && j < r.limit_impacts.size(); ++j) {
@@ -91,12 +208,9 @@ void writeResults(const std::string& path, const Model& model, const Results& r,
     f.writeMatrix("/joints/" + model.joints[j].name + "/limit_impacts", m);
   }
   // Contact monitor summary: the smallest distance of each pair and when.
-  for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.distances.size(); ++k) {
-    const std::vector<double>& d = r.distances[k];
-    if (d.empty()) continue;
-    const std::size_t i = std::min_element(d.begin(), d.end()) - d.begin();
-    f.setAttribute("/" + distanceChannel(model, k), "minimum", d[i]);
-    f.setAttribute("/" + distanceChannel(model, k), "time_of_minimum", r.time[i]);
+  for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.smallest_distance.size(); ++k) {
+    f.setAttribute("/" + distanceChannel(model, k), "minimum", r.smallest_distance[k].value);
+    f.setAttribute("/" + distanceChannel(model, k), "time_of_minimum", r.smallest_distance[k].time);
   }
   f.setAttribute("/", "cpu_seconds", r.cpu_seconds);
   f.setAttribute("/", "steps", r.steps);
@@ -107,59 +221,126 @@ void writeResults(const std::string& path, const Model& model, const Results& r,
   // compare runs.
   f.setAttribute("/", "rtol", model.settings.rtol);
   f.setAttribute("/", "atol", model.settings.atol > 0 ? model.settings.atol : 1e-3 * model.settings.rtol);
+  f.setAttribute("/", "output_step", model.settings.output_step);
   f.setAttribute("/", "t_reached", r.t_reached);
   f.setAttribute("/", "max_constraint_violation", r.max_violation);
+  f.setAttribute("/", "max_constraint_violation_time", r.peak_violation.time);
   f.setAttribute("/", "energy_balance_error", r.energy_balance_error);
   f.setAttribute("/", "rhs_evaluations", r.evaluations);
-  std::string log;
-  for (const std::string& e : r.event_log) log += e + "\n";
-  f.setAttribute("/", "events", log);
-  std::string switches;
-  for (const std::string& e : r.integrator_log) switches += e + "\n";
-  f.setAttribute("/", "integrator_switches", switches);
-  w.commit();
+  auto peak = [&](const std::string& name, const RunSummary::Peak& p, const char* where_key) {
+    f.setAttribute("/", name, p.value);
+    f.setAttribute("/", name + "_time", p.time);
+    f.setAttribute("/", name + "_" + where_key, p.where);
+  };
+  peak("peak_reaction_force", r.peak_reaction_force, "joint");
+  peak("peak_reaction_torque", r.peak_reaction_torque, "joint");
+  peak("peak_modal_coordinate", r.peak_modal_coordinate, "where");
+  f.setAttribute("/", "warnings", joined(r.warnings));
+  f.setAttribute("/", "events", joined(r.event_log));
+  f.setAttribute("/", "integrator_switches", joined(r.integrator_log));
+  try {
+    file_.commit();
+  } catch (const std::exception& e) {
+    throw OutputError(e.what());
+  }
 }
 
-void writeCsv(const std::string& path, const Model& model, const Results& r,
-              const std::vector<std::string>& wanted) {
-  const auto all = channels(model, r);
-  std::vector<const std::pair<std::string, Eigen::MatrixXd>*> chosen{&all[0]};
+CsvWriter::CsvWriter(const std::string& path, const Model& model, const std::vector<std::string>& wanted)
+    : path_(path) {
+  const std::vector<Channel> all = resultChannels(model);
+  chosen_.push_back(all[0]);
   for (const std::string& w : wanted) {
-    const std::pair<std::string, Eigen::MatrixXd>* hit = nullptr;
-    for (const auto& c : all)
-      if (c.first == w) hit = &c;
-    if (!hit) {
+    auto hit = std::find_if(all.begin(), all.end(), [&](const Channel& c) { return c.name == w; });
+    if (hit == all.end()) {
       std::string list;
-      for (const auto& c : all) list += " " + c.first;
+      for (const Channel& c : all) list += " " + c.name;
       throw std::invalid_argument("--channels: unknown channel '" + w + "'; available:" + list);
     }
-    if (hit != &all[0]) chosen.push_back(hit);
+    if (hit != all.begin()) chosen_.push_back(*hit);
   }
+  for (int attempt = 0; fd_ < 0; ++attempt) {
+    tmp_path_ = fc::temporaryNameFor(path);
+    fd_ = ::open(tmp_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd_ < 0 && (errno != EEXIST || attempt >= 8))
+      throw std::runtime_error("cannot create a temporary file beside " + path + ": " + tmp_path_ + ": " +
+                               fc::osReason(errno));
+  }
+  registration_ = std::make_unique<fc::TemporaryRegistration>(tmp_path_);
+  const char* xyz[] = {"x", "y", "z", "w"};
+  std::ostringstream s;
+  for (std::size_t k = 0; k < chosen_.size(); ++k) {
+    const Channel& c = chosen_[k];
+    for (int i = 0; i < c.columns; ++i) {
+      if (k || i) s << ",";
+      s << c.name;
+      if (c.name.find("/modal_") != std::string::npos) s << "_" << i + 1;
+      else if (c.columns == 4) s << "_e" << i;
+      else if (c.columns > 1) s << "_" << xyz[i];
+    }
+  }
+  buffer_ = s.str() + "\n";
+}
+
+CsvWriter::~CsvWriter() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    ::unlink(tmp_path_.c_str());
+  }
+}
+
+void CsvWriter::write(const Sample& sample) {
   std::ostringstream s;
   s << std::setprecision(12);
-  const char* xyz[] = {"x", "y", "z", "w"};
-  for (std::size_t k = 0; k < chosen.size(); ++k) {
-    const auto& [name, m] = *chosen[k];
-    for (Eigen::Index c = 0; c < m.cols(); ++c) {
-      if (k || c) s << ",";
-      s << name;
-      if (name.find("/modal_") != std::string::npos) s << "_" << c + 1;
-      else if (m.cols() == 4) s << "_e" << c;
-      else if (m.cols() > 1) s << "_" << xyz[c];
+  std::vector<double> row;
+  for (std::size_t k = 0; k < chosen_.size(); ++k) {
+    row.resize(chosen_[k].columns);
+    chosen_[k].read(sample, row.data());
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (k || i) s << ",";
+      s << row[i];
     }
   }
-  s << "\n";
-  for (std::size_t i = 0; i < r.time.size(); ++i) {
-    for (std::size_t k = 0; k < chosen.size(); ++k) {
-      const Eigen::MatrixXd& m = chosen[k]->second;
-      for (Eigen::Index c = 0; c < m.cols(); ++c) {
-        if (k || c) s << ",";
-        s << m(static_cast<Eigen::Index>(i), c);
-      }
-    }
-    s << "\n";
+  buffer_ += s.str() + "\n";
+  if (buffer_.size() >= kBlockBytes) drain();
+}
+
+void CsvWriter::drain() {
+  const char* p = buffer_.data();
+  std::size_t n = buffer_.size();
+  while (n > 0) {
+    const ssize_t w = ::write(fd_, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw OutputError("cannot write " + tmp_path_ + ": " + fc::osReason(errno));
+    p += w;
+    n -= static_cast<std::size_t>(w);
   }
-  fc::writeFileAtomic(path, s.str());
+  buffer_.clear();
+}
+
+void CsvWriter::finish() {
+  drain();
+  if (::fsync(fd_) != 0) throw OutputError("cannot write " + tmp_path_ + ": " + fc::osReason(errno));
+  const int rc = ::close(fd_);
+  fd_ = -1;
+  if (rc != 0 || std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp_path_.c_str());
+    throw OutputError("cannot write " + path_ + ": " + fc::osReason(err));
+  }
+  registration_.reset();
+  fc::fsyncDirectoryOf(path_);
+}
+
+void writeResults(const std::string& path, const Model& model, const Results& r, const std::string& inputs_sha256) {
+  ResultsFileWriter w(path, model, static_cast<long>(r.time.size()));
+  for (std::size_t i = 0; i < r.time.size(); ++i) w.write(r.row(i));
+  w.finish(model, r, inputs_sha256);
+}
+
+void writeCsv(const std::string& path, const Model& model, const Results& r, const std::vector<std::string>& channels) {
+  CsvWriter w(path, model, channels);
+  for (std::size_t i = 0; i < r.time.size(); ++i) w.write(r.row(i));
+  w.finish();
 }
 
 }  // namespace fc::mbs

@@ -1,12 +1,33 @@
 #include "mbs-run/run_summary.h"
 
 #include <cstdio>
+#include <limits>
 
 namespace fc::mbs {
 
-void RunSummary::observe(const Sample& s) {
+namespace {
+void raise(RunSummary::Peak& p, double value, double time, const std::string& where) {
+  if (value > p.value) p = {value, time, where};
+}
+}  // namespace
+
+void RunSummary::observe(const Model& m, const Sample& s) {
   ++samples;
   max_violation = std::max(max_violation, s.violation);
+  raise(peak_violation, s.violation, s.time, "");
+  for (std::size_t j = 0; j < s.joints.size(); ++j) {
+    raise(peak_reaction_force, s.joints[j].reaction_force.norm(), s.time, m.joints[j].name);
+    if (m.joints[j].type != JointType::Spherical)
+      raise(peak_reaction_torque, s.joints[j].reaction_torque.norm(), s.time, m.joints[j].name);
+  }
+  for (std::size_t k = 0; k < s.bodies.size(); ++k)
+    for (Eigen::Index i = 0; i < s.bodies[k].modal.size(); ++i)
+      raise(peak_modal_coordinate, std::abs(s.bodies[k].modal[i]), s.time,
+            m.bodies[k].name + " mode " + std::to_string(i + 1));
+  if (smallest_distance.size() != s.distances.size())
+    smallest_distance.assign(s.distances.size(), Peak{std::numeric_limits<double>::infinity(), 0.0, ""});
+  for (std::size_t k = 0; k < s.distances.size(); ++k)
+    if (s.distances[k] < smallest_distance[k].value) smallest_distance[k] = {s.distances[k], s.time, ""};
   energy_scale = std::max({energy_scale, std::abs(s.energy.kinetic), std::abs(s.energy.potential), s.energy.dissipated});
 }
 

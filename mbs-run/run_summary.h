@@ -28,9 +28,19 @@ struct RunSummary {
   // Impacts on stops, per joint (empty for joints without limits): time,
   // angle rate before and after [rad/s], impulse [N m s], energy lost [J].
   std::vector<std::vector<std::array<double, 5>>> limit_impacts;
+  // Peak values over the output rows: magnitude, where (joint, or "body mode
+  // k"), when.
+  struct Peak {
+    double value = 0.0, time = 0.0;
+    std::string where;
+  };
+  Peak peak_reaction_force, peak_reaction_torque, peak_violation, peak_modal_coordinate;
+  // Smallest distance of each contact-monitor pair (Model::distance_pairs).
+  std::vector<Peak> smallest_distance;
+  std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes
 
-  // Folds one output row into the statistics.
-  void observe(const Sample& s);
+  // Folds one output row into the statistics (joint and body names from the model).
+  void observe(const Model& m, const Sample& s);
 };
 
 // "t=...:" prefix of the event and integrator logs.

@@ -1,6 +1,38 @@
 #include "mbs-run/sampling.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "mbs-run/flexible/flexible_body.h"
+
 namespace fc::mbs {
+
+std::vector<std::string> samplingWarnings(const Model& m) {
+  double f_max = 0.0;
+  std::string body;
+  for (const Body& b : m.bodies) {
+    if (!b.flex || b.fixed) continue;
+    const Eigen::VectorXd& lambda = b.flex->modal.stiffness;  // omega^2 of the kept modes
+    const Eigen::Index n = std::min<Eigen::Index>(lambda.size(), b.modes);
+    if (n == 0) continue;
+    const double f = std::sqrt(lambda.head(n).maxCoeff()) / (2.0 * M_PI);
+    if (f > f_max) {
+      f_max = f;
+      body = b.name;
+    }
+  }
+  std::vector<std::string> w;
+  if (f_max > 0.0 && m.settings.output_step > 0.5 / f_max) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "output_step %.4g s cannot resolve the highest kept mode (%.4g Hz, body %s): the output "
+                  "rows alias it (Nyquist: output_step <= 1/(2 f) = %.4g s); the integration is not affected",
+                  m.settings.output_step, f_max, body.c_str(), 0.5 / f_max);
+    w.push_back(buf);
+  }
+  return w;
+}
 
 Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   const Model& m = sys.model();
@@ -20,10 +52,11 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
     b.modal = P[k].modal;
     b.modal_rate = P[k].modal_rate;
   }
-  const std::vector<Eigen::Vector3d> reac = sys.reactions(t, y);
+  const std::vector<JointReaction> reac = sys.reactions(t, y);
   s.joints.resize(m.joints.size());
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    s.joints[j].reaction_force = reac[j];
+    s.joints[j].reaction_force = reac[j].force;
+    s.joints[j].reaction_torque = reac[j].torque;
     s.joints[j].angle = m.joints[j].type == JointType::Revolute ? sys.jointAngle(int(j), y) : 0.0;
     if (m.joints[j].limits.any()) {  // reads the multipliers reactions() left
       const JointRuntime& rt = sys.jointRuntime(int(j));

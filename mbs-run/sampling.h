@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "mbs-run/model.h"
@@ -21,7 +23,8 @@ struct BodySample {
 
 struct JointSample {
   double angle = 0.0;  // revolute joints, else 0
-  Eigen::Vector3d reaction_force = Eigen::Vector3d::Zero();  // on the first body, global
+  Eigen::Vector3d reaction_force = Eigen::Vector3d::Zero();   // on the first body, global
+  Eigen::Vector3d reaction_torque = Eigen::Vector3d::Zero();  // on the first body about the joint point, global
   // Joints with limits (joint_limits.h): 0 free, -1 / +1 resting on the
   // min / max stop, 2 locked; the held angle row's torque about the axis.
   int limit_state = 0;
@@ -40,11 +43,23 @@ struct Sample {
 // The output row at (t, y); y's Euler parameters are normalised first.
 Sample takeSample(System& sys, double t, Eigen::VectorXd y);
 
+// A sink's failure to store a row (a full disk): it ends the run at once and
+// is reported as an error, not as a status in a file that cannot be written.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class SampleSink {
  public:
   virtual ~SampleSink() = default;
   virtual void write(const Sample& s) = 0;
 };
+
+// Warnings about what the output rows cannot show: an output step longer than
+// half the period of the highest kept modal frequency (Nyquist) aliases the
+// modal coordinates and every quantity they move.
+std::vector<std::string> samplingWarnings(const Model& m);
 
 // Output times k * output_step up to t_end.
 class OutputClock {

@@ -1,19 +1,20 @@
 #include "mbs-run/simulation.h"
 
+#include <algorithm>
 #include <ctime>
 #include <optional>
 #include <stdexcept>
 #include <sstream>
 
 #include "common/progress.h"
+#include "common/termination.h"
 #include "mbs-run/crossings.h"
 #include "mbs-run/events.h"
+#include "mbs-run/finite_guard.h"
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/joint_limits.h"
 
 namespace fc::mbs {
-
-std::atomic<int> g_stop_signal{0};
 
 using Eigen::VectorXd;
 
@@ -28,6 +29,7 @@ void History::append(const Sample& s) {
   if (reaction.size() != nj) {
     joint_angle.resize(nj);
     reaction.resize(nj);
+    reaction_torque.resize(nj);
     limit_state.resize(nj);
     limit_torque.resize(nj);
   }
@@ -45,6 +47,7 @@ void History::append(const Sample& s) {
   }
   for (std::size_t j = 0; j < nj; ++j) {
     reaction[j].push_back(s.joints[j].reaction_force);
+    reaction_torque[j].push_back(s.joints[j].reaction_torque);
     joint_angle[j].push_back(s.joints[j].angle);
     limit_state[j].push_back(s.joints[j].limit_state);
     limit_torque[j].push_back(s.joints[j].limit_torque);
@@ -55,6 +58,37 @@ void History::append(const Sample& s) {
   dissipated.push_back(s.energy.dissipated);
   applied_work.push_back(s.energy.applied_work);
   violation.push_back(s.violation);
+}
+
+Sample History::row(std::size_t i) const {
+  Sample s;
+  s.time = time[i];
+  s.bodies.resize(position.size());
+  for (std::size_t k = 0; k < position.size(); ++k) {
+    BodySample& b = s.bodies[k];
+    b.position = position[k][i];
+    b.orientation = orientation[k][i];
+    b.velocity = velocity[k][i];
+    b.angular_velocity = angular_velocity[k][i];
+    b.modal = modal[k][i];
+    b.modal_rate = modal_rate[k][i];
+  }
+  s.joints.resize(reaction.size());
+  for (std::size_t j = 0; j < reaction.size(); ++j) {
+    s.joints[j].angle = joint_angle[j][i];
+    s.joints[j].reaction_force = reaction[j][i];
+    s.joints[j].reaction_torque = reaction_torque[j][i];
+    s.joints[j].limit_state = limit_state[j][i];
+    s.joints[j].limit_torque = limit_torque[j][i];
+  }
+  for (std::size_t k = 0; k < distances.size(); ++k) s.distances.push_back(distances[k][i]);
+  s.energy.kinetic = kinetic[i];
+  s.energy.potential = potential[i];
+  s.energy.strain = strain[i];
+  s.energy.dissipated = dissipated[i];
+  s.energy.applied_work = applied_work[i];
+  s.violation = violation[i];
+  return s;
 }
 
 namespace {
@@ -98,16 +132,39 @@ std::string stepFailure(double t, const Integrator& integ, const Settings& st, d
 
 class SummarySink : public SampleSink {
  public:
-  SummarySink(SampleSink& out, RunSummary& r) : out_(out), r_(r) {}
+  SummarySink(const Model& m, SampleSink& out, RunSummary& r) : m_(m), out_(out), r_(r) {}
   void write(const Sample& s) override {
-    r_.observe(s);
+    FiniteGuard::checkSample(m_, s);  // a file never holds NaN: the run stops first
+    r_.observe(m_, s);
     out_.write(s);
   }
 
  private:
+  const Model& m_;
   SampleSink& out_;
   RunSummary& r_;
 };
+
+class UnsatisfiableConstraints : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// After projecting at the start or after an event, constraints that cannot
+// all hold (contradicting joints) leave a violation far above what the
+// projection reaches otherwise (1e-12 of the scene's size): stop with a
+// status that says so rather than integrate a compromise.
+void requireSatisfiable(System& sys, double t, const VectorXd& y, double atol) {
+  const System::Violations v = sys.violations(t, y);
+  const double limit = std::max(1e-6, 100.0 * atol);
+  if (!(v.position > limit)) return;
+  std::ostringstream s;
+  s << "unsatisfiable constraints at t = " << t << ": after projection the joints still miss by " << v.position
+    << " (m or rad, limit " << limit << "), largest at joint "
+    << (v.worst_joint >= 0 ? sys.model().joints[v.worst_joint].name : std::string("?"))
+    << "; the joints contradict each other (check their points and axes)";
+  throw UnsatisfiableConstraints(s.str());
+}
 
 // The kinetic energy a velocity jump removes (a lock or a joint switched on
 // while the bodies move is a plastic impact: the projection that follows is
@@ -127,50 +184,52 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   const Settings& st = model.settings;
   System sys(model);
   RunSummary R;
-  SummarySink sink(output, R);
-
-  VectorXd y = sys.initialState();
-  // Capture held poses, make the initial state consistent, then measure the
-  // revolute angle offsets in the consistent configuration.
-  sys.initializeJoints(y);
-  sys.project(0.0, y);
-  sys.initializeJoints(y);
-
+  R.warnings = samplingWarnings(model);
+  SummarySink sink(model, output, R);
   const Tolerances tol = tolerances(st, sys.size());
   // Stops on revolute joints (joint_limits.h): the angle tolerance that
   // decides when a rebound is too small to resolve is atol [rad].
   StopMonitor stops(model, tol.atol);
-  stops.start(sys, 0.0, y, R.event_log);
-  if (stops.active()) sys.project(0.0, y);
-  IntegratorSwitching methods(st, [&sys](double t, const VectorXd& yy, VectorXd& yd) { sys.derivative(t, yy, yd); },
-                              tol);
+  FiniteGuard guard(sys);
+  IntegratorSwitching methods(st, guard.rhs(), tol);
   R.integrator = methods.label();
-  methods.current().reset(0.0, y);
-
   TimedEvents timed(model);
   CrossingEvents crossings(model);
   OutputClock clock(st.output_step, st.t_end);
-  sink.write(takeSample(sys, 0.0, y));
-  clock.advance();
   EnergyBalance balance;
-  balance.startSegment(sys.energies(0.0, y).total());
-
   fc::Progress progress("mbs-run", st.t_end, options.quiet);
   double t = 0.0;
   double last_stop_time = -1.0;
   int same_time_stops = 0;
-  // Any failure inside the step (a kernel throwing, a singular factorisation
-  // reported as an exception) ends the run with what was computed so far and
-  // a status saying why, as the contract asks of solver failures.
+  // Any failure (a kernel throwing, a singular factorisation, a non-finite
+  // state, contradicting joints, a signal) ends the run with what was
+  // computed so far and a status saying why, as the contract asks.
   try {
+    VectorXd y = sys.initialState();
+    // A non-finite ingredient (a huge length, NaN in a body file) is named
+    // before the projection spreads it over every coordinate.
+    if (const std::string cause = sys.nonFiniteCause(0.0, y); !cause.empty())
+      throw NonFiniteState("non-finite state: " + cause + " is not finite at t = 0 s");
+    // Capture held poses, make the initial state consistent, then measure the
+    // revolute angle offsets in the consistent configuration.
+    sys.initializeJoints(y);
+    sys.project(0.0, y);
+    sys.initializeJoints(y);
+    requireSatisfiable(sys, 0.0, y, tol.atol);
+    stops.start(sys, 0.0, y, R.event_log);
+    if (stops.active()) sys.project(0.0, y);
+    methods.current().reset(0.0, y);
+    sink.write(takeSample(sys, 0.0, y));
+    clock.advance();
+    guard.watchSignals();
+    balance.startSegment(sys.energies(0.0, y).total());
+
     while (t < st.t_end) {
-      if (g_stop_signal.load()) {
-        R.status = "interrupted by signal " + std::to_string(g_stop_signal.load());
-        break;
-      }
+      if (const int sig = fc::terminationSignal()) throw fc::Terminated(sig);
       while (timed.dueAt(t)) {  // events at or before the current time (e.g. time 0) apply now
         R.event_log.push_back(timeLabel(t) + describeEvent(model, timed.applyNext(sys, y)));
         projectKeepingEnergy(sys, t, y);
+        requireSatisfiable(sys, t, y, tol.atol);
         methods.restartAfterEvent(t, y, R.integrator_log);
         balance.startSegment(sys.energies(t, y).total());
       }
@@ -210,6 +269,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
         R.event_log.push_back(timeLabel(t) + " joint " + model.joints[hit.event->joint].name + " crossed " +
                               std::to_string(hit.event->angle) + ";" + describeEvent(model, *hit.event));
         projectKeepingEnergy(sys, t, y);
+        requireSatisfiable(sys, t, y, tol.atol);
         methods.restartAfterEvent(t, y, R.integrator_log);
       } else if (stop) {
         // Stop events that repeat without time advancing would be a Zeno
@@ -230,6 +290,14 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       if (hit.event || timed.dueAt(t)) balance.startSegment(sys.energies(t, y).total());
       progress.update(t, "steps " + std::to_string(methods.current().steps));
     }
+  } catch (const OutputError&) {
+    throw;  // the results cannot be stored: an error, not a status
+  } catch (const fc::Terminated& e) {
+    R.status = "interrupted by " + fc::signalName(e.signal());
+  } catch (const NonFiniteState& e) {
+    R.status = e.what();
+  } catch (const UnsatisfiableConstraints& e) {
+    R.status = e.what();
   } catch (const std::exception& e) {
     std::ostringstream msg;
     msg << "solver failure at t = " << t << ": " << e.what();

@@ -7,7 +7,6 @@
 // simulate() only sequences them.
 #include <Eigen/Dense>
 
-#include <atomic>
 #include <string>
 #include <vector>
 
@@ -26,13 +25,14 @@ struct History {
   std::vector<std::vector<Eigen::Vector4d>> orientation;
   std::vector<std::vector<Eigen::VectorXd>> modal, modal_rate; // [body][row] (flexible bodies)
   std::vector<std::vector<double>> joint_angle;                // [joint][row] (revolute only)
-  std::vector<std::vector<Eigen::Vector3d>> reaction;          // [joint][row]
+  std::vector<std::vector<Eigen::Vector3d>> reaction, reaction_torque;  // [joint][row]
   std::vector<double> kinetic, potential, strain, dissipated, applied_work, violation;
   std::vector<std::vector<int>> limit_state;       // [joint][row] (joints with limits, else empty)
   std::vector<std::vector<double>> limit_torque;   // [joint][row]
   std::vector<std::vector<double>> distances;      // [pair of Model::distance_pairs][row] [m]
 
   void append(const Sample& s);
+  Sample row(std::size_t i) const;  // the row as it was taken
 };
 
 struct Results : RunSummary, History {};
@@ -41,11 +41,11 @@ struct RunOptions {
   bool quiet = false;
 };
 
-// Set by the termination-signal handler of the executable; the loop stops at
-// the next step and the results so far are written with status "interrupted".
-extern std::atomic<int> g_stop_signal;
-
-// Runs the scene, handing each output row to `sink` as it is taken.
+// Runs the scene, handing each output row to `sink` as it is taken. A
+// termination signal recorded by common/termination (the executable installs
+// it with Policy::Record) stops the loop at the next step with status
+// "interrupted by SIGxxx"; a solver failure stops it with a status saying why;
+// the sink's OutputError propagates.
 RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& sink);
 // Runs the scene keeping every output row in memory.
 Results simulate(const Model& model, const RunOptions& options = {});

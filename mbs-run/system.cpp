@@ -249,9 +249,54 @@ System::Violations System::violations(double t, const VectorXd& y) {
   assembleConstraints(t, P_);
   Violations v;
   if (phi_.size() == 0) return v;
-  v.position = phi_.cwiseAbs().maxCoeff();
+  Eigen::Index row = 0;
+  v.position = phi_.cwiseAbs().maxCoeff(&row);
   v.velocity = (Phi_v_ * y.segment(model_.nq, model_.nv) + phit_).cwiseAbs().maxCoeff();
+  for (std::size_t j = 0; j < model_.joints.size(); ++j)
+    if (joints_[j].enabled && row_of_joint_[j] <= row) v.worst_joint = static_cast<int>(j);
   return v;
+}
+
+std::string System::nonFiniteCause(double t, const VectorXd& y) {
+  auto finite = [](const auto& m) { return m.allFinite(); };
+  for (const Body& b : model_.bodies) {
+    if (b.fixed) continue;
+    if (!finite(y.segment(b.pos_index, b.nq())) || !finite(y.segment(model_.nq + b.dof_index, b.nv())))
+      return "the state of body " + b.name;
+  }
+  poses(y, P_);
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed) continue;
+    const BodyPose& P = P_[k];
+    if (b.flex) {
+      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P.A, P.modal, P.modal_rate, P.w);
+      if (!finite(fi.M) || !finite(fi.Qv)) return "the inertia of flexible body " + b.name + " (its body file)";
+      if (b.modes > 0 && !finite(elasticForces(b.flex->modal, P.modal, P.modal_rate)))
+        return "the modal stiffness of flexible body " + b.name + " (its body file)";
+    } else if (!std::isfinite(b.mass) || !finite(b.com) || !finite(b.inertia_com) ||
+               !finite(rigidMassMatrix(b.mass, b.com, b.inertia_com, P.A)) ||
+               !finite(rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P.A, P.w))) {
+      return "the mass or inertia of body " + b.name;
+    }
+  }
+  for (std::size_t f = 0; f < model_.forces.size(); ++f) {
+    if (!force_on_[f]) continue;
+    ForceSums sums;
+    sums.Q.setZero(model_.nv);
+    addForceElement(model_, model_.forces[f], P_, joints_, ForceQuantity::ForcesAndPowers, sums);
+    if (!finite(sums.Q) || !std::isfinite(sums.dissipation) || !std::isfinite(sums.applied_power))
+      return "force element " + forceElementLabel(model_, static_cast<int>(f));
+  }
+  ConstraintRows rows;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (!joints_[j].enabled) continue;
+    jointConstraints(jt, joints_[j], P_[jt.body_i], P_[jt.body_j], t, rows);
+    if (!finite(rows.Ji) || !finite(rows.Jj) || !finite(rows.phi) || !finite(rows.phit) || !finite(rows.c))
+      return "joint " + jt.name;
+  }
+  return "";
 }
 
 double System::project(double t, VectorXd& y) {
@@ -321,19 +366,27 @@ Energies System::energies(double t, const VectorXd& y) const {
   return e;
 }
 
-std::vector<Vector3d> System::reactions(double t, const VectorXd& y) {
+std::vector<JointReaction> System::reactions(double t, const VectorXd& y) {
   VectorXd ydot;
   derivative(t, y, ydot);  // leaves the multipliers of this state in lambda_
-  std::vector<Vector3d> out(model_.joints.size(), Vector3d::Zero());
+  std::vector<JointReaction> out(model_.joints.size());
   ConstraintRows rows;
   for (std::size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];
     if (!joints_[j].enabled) continue;
     jointConstraints(jt, joints_[j], P_[jt.body_i], P_[jt.body_j], t, rows);
-    // Constraint force on body i: -Ji^T lambda; its first three entries are the
-    // global force.
+    // Generalised constraint force on body i: -Ji^T lambda over its velocity
+    // coordinates [rdot, omega', wdot]. Its first three entries are the global
+    // force F; the next three, the moment about the body frame origin in body
+    // axes (the virtual work of a frame rotation). The torque the joint
+    // transmits is that moment taken about the joint's point on body i:
+    // n = A n_O' - (x_P - r) x F.
     const VectorXd lam = lambda_.segment(row_of_joint_[j], rows.size());
-    out[j] = -(rows.Ji.transpose() * lam).head<3>();
+    const VectorXd Q = -(rows.Ji.transpose() * lam);
+    const BodyPose& bi = P_[jt.body_i];
+    out[j].force = Q.head<3>();
+    const Vector3d lever = attachedPoint(bi, jt.point_i, jt.shapes_i.psi).x - bi.r;
+    out[j].torque = bi.A * Q.segment<3>(3) - lever.cross(out[j].force);
   }
   return out;
 }

@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include <string>
 #include <vector>
 
 #include "mbs-run/augmented_lagrangian.h"
@@ -24,6 +25,10 @@ namespace fc::mbs {
 struct Energies {
   double kinetic = 0, potential = 0, strain = 0, dissipated = 0, applied_work = 0;
   double total() const { return kinetic + potential + strain + dissipated - applied_work; }
+};
+
+struct JointReaction {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
 };
 
 struct EvalStats {
@@ -55,12 +60,19 @@ class System {
   // Largest |Phi| and largest |Phi_v v + Phi_t| (velocity level).
   struct Violations {
     double position = 0.0, velocity = 0.0;
+    int worst_joint = -1;  // the joint of the largest position violation
   };
   Violations violations(double t, const Eigen::VectorXd& y);
 
+  // What makes f(t, y) non-finite: "the state of body B", "the mass or
+  // inertia of body B", "force element F", "joint J"...; "" when every
+  // ingredient is finite (then the constraint solve itself failed).
+  std::string nonFiniteCause(double t, const Eigen::VectorXd& y);
+
   Energies energies(double t, const Eigen::VectorXd& y) const;
-  // Reaction force on the first body of each joint (global); zero if disabled.
-  std::vector<Eigen::Vector3d> reactions(double t, const Eigen::VectorXd& y);
+  // Reaction force and torque (about the joint's point) on the first body of
+  // each joint, global, from the multipliers; zero if disabled.
+  std::vector<JointReaction> reactions(double t, const Eigen::VectorXd& y);
   // Unwrapped angle of revolute joint j in configuration y.
   double jointAngle(int j, const Eigen::VectorXd& y) const;
   // Records the current revolute angles as the unwrapping references

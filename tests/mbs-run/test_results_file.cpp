@@ -2,10 +2,12 @@
 // stopped by a signal still writes a valid file whose status says why.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
 #include "common/h5io.h"
+#include "common/termination.h"
 #include "helpers.h"
 #include "mbs-run/results.h"
 #include "mbs-run/simulation.h"
@@ -74,14 +76,14 @@ TEST(ResultsFile, ContractLayout) {
 
 TEST(ResultsFile, InterruptedRunIsValidAndSaysWhy) {
   const Model m = sceneFromText(kScene);
-  g_stop_signal.store(15);
+  fc::raiseTerminationForTests(SIGTERM);
   const Results r = simulate(m, {true});
-  g_stop_signal.store(0);
-  EXPECT_EQ(r.status, "interrupted by signal 15");
+  fc::resetTerminationForTests();
+  EXPECT_EQ(r.status, "interrupted by SIGTERM");
   const std::string path = tmpPath("stopped.h5");
   writeResults(path, m, r, "deadbeef");
   fc::H5File f(path, fc::H5File::Mode::Read);
-  EXPECT_EQ(f.stringAttribute("/", "status"), "interrupted by signal 15");
+  EXPECT_EQ(f.stringAttribute("/", "status"), "interrupted by SIGTERM");
   EXPECT_EQ(f.shape("/time")[0], 1u);  // the initial state was computed, nothing more
   f.close();
   std::filesystem::remove(path);
