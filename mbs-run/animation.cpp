@@ -181,16 +181,24 @@ Eigen::Vector3d equivalentBox(double mass, const Eigen::Vector3d& I) {
   return size;
 }
 
-AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& scene_path, const Model& model,
-                                const std::string& results_path, int every) {
-  if (pvd_path.size() < 4 || pvd_path.compare(pvd_path.size() - 4, 4, ".pvd") != 0)
+std::string prepareAnimationFolder(const std::string& pvd_path) {
+  if (pvd_path.size() < 5 || pvd_path.compare(pvd_path.size() - 4, 4, ".pvd") != 0)
     throw std::runtime_error(pvd_path + ": the animation file must end in .pvd (a ParaView collection)");
-  if (every < 1) throw std::runtime_error("--animation-every must be at least 1");
-  const std::string stem = baseName(pvd_path.substr(0, pvd_path.size() - 4));
-  const std::string dir_rel = stem;  // frames folder, relative to the .pvd
-  const std::string folder = directoryOf(pvd_path) + "/" + dir_rel;
+  const std::string folder = directoryOf(pvd_path) + "/" + baseName(pvd_path.substr(0, pvd_path.size() - 4));
   if (::mkdir(folder.c_str(), 0777) != 0 && errno != EEXIST)
     throw std::runtime_error(folder + ": cannot create the animation folder: " + std::strerror(errno));
+  struct stat st;
+  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    throw std::runtime_error(folder + ": exists and is not a folder; the animation needs it for its frames");
+  return folder;
+}
+
+AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& scene_path, const Model& model,
+                                const std::string& results_path, int every) {
+  if (every < 1) throw std::runtime_error("--animation-every must be at least 1");
+  const std::string folder = prepareAnimationFolder(pvd_path);
+  const std::string stem = baseName(pvd_path.substr(0, pvd_path.size() - 4));
+  const std::string dir_rel = stem;  // frames folder, relative to the .pvd
 
   // Scene nodes by body name (rod/plate dimensions are not kept in the Model).
   const InputNode scene = InputNode::loadFile(scene_path);

@@ -35,6 +35,11 @@ struct AnimationSummary {
 AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& scene_path, const Model& model,
                                 const std::string& results_path, int every = 1);
 
+// Creates the frames folder of `pvd_path` (R.pvd -> R/) and checks the name, so
+// that a bad --animation argument fails before the run, not after it.
+// Returns the folder; throws std::runtime_error naming it.
+std::string prepareAnimationFolder(const std::string& pvd_path);
+
 // Edge lengths of the uniform box with this mass and these principal moments
 // (a^2 = 6 (I2 + I3 - I1) / m and cyclically); zero where the moments allow none.
 Eigen::Vector3d equivalentBox(double mass, const Eigen::Vector3d& principal_moments);

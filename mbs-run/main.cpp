@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
       fc::checkOutputWritable(out);
     }
     if (!csv.empty()) fc::checkOutputIsNotAnInput(csv, {output});
+    if (!animation.empty()) fc::mbs::prepareAnimationFolder(animation);  // fail before the run, not after
     for (const std::string& w : fc::mbs::samplingWarnings(model))
       std::fprintf(stderr, "mbs-run: warning: %s\n", w.c_str());
     const long expected_rows = static_cast<long>(model.settings.t_end / model.settings.output_step) + 2;

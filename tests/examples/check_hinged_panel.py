@@ -5,9 +5,12 @@ Before the latch the panel turns as one piece under the spring's torque
 f(angle) (linear from 1.5 N m at 0 to 0.5 N m at -1.6 rad): the work of the
 spring up to the latch equals the kinetic energy there plus the strain energy
 (energy balance of the run, checked to 1e-6 J). After the latch the angle stays
-within the constraint tolerance of -pi/2.
+within the constraint tolerance of -pi/2. A bad --animation argument fails
+before the run with a message naming it.
 """
+import os
 import re
+import subprocess
 import sys
 
 import h5py
@@ -45,5 +48,14 @@ with h5py.File(f"{out}/hinged-panel.h5", "r") as f:
         check(held < 1e-6, f"hinge held at -pi/2 after the latch: largest deviation {held:.2e} rad")
         ring = np.abs(w[after]).max(axis=0)
         check(ring[0] > 1e-4, f"first mode rings after the latch: |w1| up to {ring[0]:.2e} kg^1/2 m")
+# A bad --animation target fails at once, before the run, naming the folder.
+p = subprocess.run(["mbs-run", "scene.yaml", "-o", f"{out}/bad.h5", "--animation", "/nonexistent/x.pvd", "-q"],
+                   capture_output=True, text=True)
+check(p.returncode != 0 and "/nonexistent/x" in p.stderr and not os.path.exists(f"{out}/bad.h5"),
+      f"unwritable animation folder: exit {p.returncode}, '{p.stderr.strip()}', no results written")
+p = subprocess.run(["mbs-run", "scene.yaml", "-o", f"{out}/bad.h5", "--animation", f"{out}/x.vtk", "-q"],
+                   capture_output=True, text=True)
+check(p.returncode != 0 and ".pvd" in p.stderr and not os.path.exists(f"{out}/bad.h5"),
+      f"animation name not .pvd: exit {p.returncode}, '{p.stderr.strip().splitlines()[0] if p.stderr.strip() else ''}'")
 print(f"{len(fails)} failure(s)")
 sys.exit(1 if fails else 0)
