@@ -1,5 +1,7 @@
 #include "common/input.h"
 
+#include <climits>
+#include <cstdlib>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -70,15 +72,86 @@ InputNode InputNode::loadFile(const std::string& path) {
   return loadString(text, path);
 }
 
+namespace {
+
+std::string describeKeyPath(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+// Checks what yaml-cpp accepts but flexcomp must not: duplicate keys (yaml-cpp
+// keeps the first silently), non-scalar ("complex") keys, and nesting so deep
+// that recursive code would exhaust the stack. Iterative, so it cannot overflow.
+void validateTree(const YAML::Node& root, const std::string& file) {
+  constexpr std::size_t kMaxDepth = 64;
+  struct Item {
+    YAML::Node node;
+    std::string path;
+    std::size_t depth;
+  };
+  std::vector<Item> stack{{root, "", 0}};
+  while (!stack.empty()) {
+    Item it = std::move(stack.back());
+    stack.pop_back();
+    const YAML::Mark m = it.node.Mark();
+    if (it.depth > kMaxDepth)
+      throw InputError(file, m.line + 1, m.column + 1, it.path,
+                       "nesting deeper than " + std::to_string(kMaxDepth) + " levels");
+    if (it.node.IsMap()) {
+      std::vector<std::pair<std::string, YAML::Mark>> seen;
+      for (const auto& kv : it.node) {
+        const YAML::Mark km = kv.first.Mark();
+        if (!kv.first.IsScalar())
+          throw InputError(file, km.line + 1, km.column + 1, it.path,
+                           "a key must be a plain name, got a " +
+                               std::string(kv.first.IsMap() ? "map" : kv.first.IsSequence() ? "list" : "null") +
+                               " as key (a stray '?' or '[' before a key?)");
+        const std::string key = kv.first.Scalar();
+        for (const auto& [k, where] : seen)
+          if (k == key)
+            throw InputError(file, km.line + 1, km.column + 1, describeKeyPath(it.path, key),
+                             "duplicate key '" + key + "' (first given at line " +
+                                 std::to_string(where.line + 1) + ", column " +
+                                 std::to_string(where.column + 1) + "); give each key once");
+        seen.emplace_back(key, km);
+        stack.push_back({kv.second, describeKeyPath(it.path, key), it.depth + 1});
+      }
+    } else if (it.node.IsSequence()) {
+      for (std::size_t i = 0; i < it.node.size(); ++i)
+        stack.push_back({it.node[i], it.path + "[" + std::to_string(i) + "]", it.depth + 1});
+    }
+  }
+}
+
+}  // namespace
+
 InputNode InputNode::loadString(const std::string& text, const std::string& name) {
   auto file = std::make_shared<const std::string>(name);
+  // yaml-cpp's parser recurses once per nesting level: a few thousand '[' would
+  // overflow the stack before any check of ours runs. Count the flow nesting first.
+  {
+    int depth = 0, line = 1, worst_line = 0;
+    for (char c : text) {
+      if (c == '\n') ++line;
+      if (c == '[' || c == '{') {
+        if (++depth > 64 && worst_line == 0) worst_line = line;
+      } else if ((c == ']' || c == '}') && depth > 0) {
+        --depth;
+      }
+    }
+    if (worst_line > 0)
+      throw InputError(name, worst_line, 0, "", "brackets nested deeper than 64 levels");
+  }
+  YAML::Node root;
   try {
-    YAML::Node root = YAML::Load(text);
-    return InputNode(root, file, "");
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(name, e.mark.line + 1, e.mark.column + 1, "",
                      "invalid YAML: " + e.msg);
+  } catch (const std::bad_alloc&) {
+    throw InputError(name, 0, 0, "", "out of memory while parsing the file (is it YAML?)");
   }
+  validateTree(root, name);
+  return InputNode(root, file, "");
 }
 
 const std::string& InputNode::file() const {
@@ -123,7 +196,13 @@ std::optional<InputNode> InputNode::get(const std::string& key) const {
 std::vector<std::string> InputNode::keys() const {
   std::vector<std::string> out;
   if (!node_.IsMap()) return out;
-  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar()) {
+      const YAML::Mark m = kv.first.Mark();
+      throw InputError(file(), m.line + 1, m.column + 1, path_, "a key must be a plain name");
+    }
+    out.push_back(kv.first.Scalar());
+  }
   return out;
 }
 
@@ -262,6 +341,29 @@ std::string closestMatch(const std::string& word, const std::vector<std::string>
   return best;
 }
 
+namespace {
+
+// Entry names from an included file: plain names only. Anything else means the
+// file is not a flexcomp materials/laminates file, and quoting its keys in an
+// error would echo the content of whatever file was named (/etc/shadow...).
+bool isPlainName(const std::string& s) {
+  if (s.empty() || s.size() > 64) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == '+'))
+      return false;
+  return true;
+}
+
+// Files being included, outermost first: a file met again is a cycle.
+thread_local std::vector<std::string> t_include_chain;
+
+std::string canonicalOrSame(const std::string& path) {
+  char buf[PATH_MAX];
+  return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, InputNode>> namedEntries(const InputNode& block) {
   std::vector<std::pair<std::string, InputNode>> out;
   if (!block.isMap()) block.fail("expected a map of named entries (or include: FILE)");
@@ -275,12 +377,28 @@ std::vector<std::pair<std::string, InputNode>> namedEntries(const InputNode& blo
     }
     for (const auto& f : files) {
       const std::string path = resolveRelativeTo(block.file(), f);
+      const std::string canon = canonicalOrSame(path);
+      const std::string here = canonicalOrSame(block.file());
+      std::vector<std::string> chain = t_include_chain;
+      if (chain.empty()) chain.push_back(here);
+      if (std::find(chain.begin(), chain.end(), canon) != chain.end()) {
+        std::string cycle;
+        for (const auto& c : chain) cycle += c + " -> ";
+        inc.fail("include cycle: " + cycle + canon + "; a file cannot include itself");
+      }
+      if (chain.size() > 16) inc.fail("includes nested deeper than 16 files");
       InputNode root;
       try {
         root = InputNode::loadFile(path);
       } catch (const InputError& e) {
+        // Only the reason, never the included file's text: it may be any file.
         if (e.line() == 0) inc.fail("cannot read included file '" + path + "'");
-        throw;
+        // A .yaml file was meant to be read: give yaml-cpp's reason. Any other file
+        // (a typo naming /etc/shadow...) gets the line only.
+        const bool yaml = path.size() > 5 && (path.rfind(".yaml") == path.size() - 5 ||
+                                              path.rfind(".yml") == path.size() - 4);
+        inc.fail("included file '" + path + "' line " + std::to_string(e.line()) + ": " +
+                 (yaml ? e.message() : std::string("not valid YAML")));
       }
       // An included file holds the entries directly, or under the same block name.
       const std::string block_name =
@@ -288,7 +406,22 @@ std::vector<std::pair<std::string, InputNode>> namedEntries(const InputNode& blo
                                   ? 0
                                   : block.path().find_last_of('.') + 1);
       InputNode entries = (root.isMap() && root.has(block_name)) ? root[block_name] : root;
-      for (auto& e : namedEntries(entries)) out.push_back(std::move(e));
+      if (!entries.isMap())
+        inc.fail("included file '" + path + "' does not hold a map of named " + block_name +
+                 " entries");
+      for (const auto& key : entries.keys())
+        if (!isPlainName(key))
+          inc.fail("included file '" + path + "' is not a flexcomp " + block_name +
+                   " file: its entries must be plain names (letters, digits, _ - . +)");
+      chain.push_back(canon);
+      std::swap(chain, t_include_chain);
+      try {
+        for (auto& e : namedEntries(entries)) out.push_back(std::move(e));
+      } catch (...) {
+        std::swap(chain, t_include_chain);
+        throw;
+      }
+      std::swap(chain, t_include_chain);
     }
   }
   for (const auto& key : block.keys()) {

@@ -8,10 +8,39 @@ namespace fc {
 
 namespace {
 
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 void requirePositive(const std::string& name, const char* what, double v) {
   if (!(v > 0) || !std::isfinite(v))
     throw std::invalid_argument("material '" + name + "': " + what + " must be positive, got " +
-                                std::to_string(v));
+                                num(v));
+}
+
+// Physical ranges (SI units). Moduli: soft gels ~1e3 Pa to diamond 1.2e12 Pa.
+// Densities: aerogels ~1 kg/m^3 to osmium 2.26e4 kg/m^3. Outside them a value is
+// a unit mistake (GPa typed as Pa) or a typo, and the arithmetic of the section
+// and element kernels (products of moduli and lengths^4) underflows to 0 or NaN.
+constexpr double kModulusMin = 1e3, kModulusMax = 1e13;
+constexpr double kDensityMin = 0.1, kDensityMax = 1e5;
+
+void requireModulus(const std::string& name, const char* what, double v) {
+  requirePositive(name, what, v);
+  if (v < kModulusMin || v > kModulusMax)
+    throw std::invalid_argument("material '" + name + "': " + what + " = " + num(v) +
+                                " Pa is outside the physical range [" + num(kModulusMin) + ", " +
+                                num(kModulusMax) + "] Pa (SI units: a modulus in GPa is e9 Pa)");
+}
+
+void requireDensity(const std::string& name, double v) {
+  requirePositive(name, "rho", v);
+  if (v < kDensityMin || v > kDensityMax)
+    throw std::invalid_argument("material '" + name + "': rho = " + num(v) +
+                                " kg/m^3 is outside the physical range [" + num(kDensityMin) +
+                                ", " + num(kDensityMax) + "] kg/m^3");
 }
 
 // Positive-definite stiffness is the admissibility condition for any linear
@@ -50,13 +79,16 @@ Matrix6d orthotropicCompliance(double E1, double E2, double E3, double G12, doub
 Material makeOrthotropic(const std::string& name, double E1, double E2, double E3, double G12,
                          double G13, double G23, double nu12, double nu13, double nu23,
                          double rho) {
-  requirePositive(name, "E1", E1);
-  requirePositive(name, "E2", E2);
-  requirePositive(name, "E3", E3);
-  requirePositive(name, "G12", G12);
-  requirePositive(name, "G13", G13);
-  requirePositive(name, "G23", G23);
-  requirePositive(name, "rho", rho);
+  requireModulus(name, "E1", E1);
+  requireModulus(name, "E2", E2);
+  requireModulus(name, "E3", E3);
+  requireModulus(name, "G12", G12);
+  requireModulus(name, "G13", G13);
+  requireModulus(name, "G23", G23);
+  requireDensity(name, rho);
+  for (double nu : {nu12, nu13, nu23})
+    if (!std::isfinite(nu))
+      throw std::invalid_argument("material '" + name + "': Poisson ratios must be finite numbers");
   // Bounds |nu_ij| < sqrt(E_i/E_j) (Lempriere 1968), checked first for a precise message.
   auto bound = [&](const char* which, double nu, double Ei, double Ej) {
     if (std::abs(nu) >= std::sqrt(Ei / Ej))
@@ -86,7 +118,7 @@ Material makeOrthotropic(const std::string& name, double E1, double E2, double E
 }
 
 Material makeIsotropic(const std::string& name, double E, double nu, double rho) {
-  requirePositive(name, "E", E);
+  requireModulus(name, "E", E);
   if (!(nu > -1.0 && nu < 0.5))
     throw std::invalid_argument("material '" + name + "': Poisson ratio nu = " +
                                 std::to_string(nu) + " must lie in (-1, 0.5)");
@@ -97,8 +129,18 @@ Material makeIsotropic(const std::string& name, double E, double nu, double rho)
 }
 
 Material makeAnisotropic(const std::string& name, const Matrix6d& C, double rho) {
-  requirePositive(name, "rho", rho);
+  requireDensity(name, rho);
+  if (!C.allFinite())
+    throw std::invalid_argument("material '" + name + "': C holds a non-finite number");
   requirePositiveDefinite(name, C);
+  // Eigenvalues of C are moduli (Kelvin's eigenstiffnesses): same physical range.
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(0.5 * (C + C.transpose()));
+  if (es.eigenvalues().minCoeff() < kModulusMin || es.eigenvalues().maxCoeff() > 3 * kModulusMax)
+    throw std::invalid_argument("material '" + name + "': the eigenvalues of C, " +
+                                num(es.eigenvalues().minCoeff()) + " to " +
+                                num(es.eigenvalues().maxCoeff()) +
+                                " Pa, leave the physical range of moduli [" + num(kModulusMin) +
+                                ", " + num(3 * kModulusMax) + "] Pa (SI units expected)");
   Material m;
   m.name = name;
   m.kind = Material::Kind::Anisotropic;

@@ -95,3 +95,68 @@ TEST(Input, ClosestMatch) {
   EXPECT_EQ(fc::closestMatch("orthotropc", {"isotropic", "orthotropic"}), "orthotropic");
   EXPECT_EQ(fc::closestMatch("zzz", {"isotropic", "orthotropic"}), "");
 }
+
+// --- hardening (issue 11): what yaml-cpp accepts but flexcomp must refuse ----------
+
+TEST(InputHardening, DuplicateKeysNameBothLocations) {
+  auto e = errorOf([] { InputNode::loadString("sim:\n  t_end: 1\n  rtol: 1e-6\n  t_end: 2\n", "d.yaml"); });
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_EQ(e.keyPath(), "sim.t_end");
+  EXPECT_NE(std::string(e.what()).find("first given at line 2, column 3"), std::string::npos) << e.what();
+  // In flow maps and at the top level too.
+  EXPECT_EQ(errorOf([] { InputNode::loadString("a: {m: 1, m: 1000}\n", "f.yaml"); }).keyPath(), "a.m");
+  EXPECT_EQ(errorOf([] { InputNode::loadString("s: 1\nx: 2\ns: 3\n", "t.yaml"); }).line(), 3);
+}
+
+TEST(InputHardening, ComplexKeysAreLocatedErrors) {
+  auto e = errorOf([] { InputNode::loadString("a:\n  ? [x, y]\n  : 1\n", "c.yaml"); });
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_NE(std::string(e.what()).find("a key must be a plain name"), std::string::npos);
+  EXPECT_EQ(errorOf([] { InputNode::loadString("{a: 1}: 2\n", "c2.yaml"); }).line(), 1);
+}
+
+TEST(InputHardening, DeepNestingIsRefusedWithoutOverflowingTheStack) {
+  const std::string deep = "a: " + std::string(200000, '[') + std::string(200000, ']') + "\n";
+  auto e = errorOf([&] { InputNode::loadString(deep, "deep.yaml"); });
+  EXPECT_EQ(e.line(), 1);
+  EXPECT_NE(std::string(e.what()).find("nested deeper"), std::string::npos);
+  // Block nesting (no brackets) is caught by the tree check.
+  std::string nested;
+  for (int i = 0; i < 70; ++i) nested += std::string(2 * i, ' ') + "k" + std::to_string(i) + ":\n";
+  nested += std::string(140, ' ') + "v: 1\n";
+  auto e2 = errorOf([&] { InputNode::loadString(nested, "block.yaml"); });
+  EXPECT_NE(std::string(e2.what()).find("nesting deeper than 64"), std::string::npos) << e2.what();
+}
+
+TEST(InputHardening, IncludeCyclesAreLocatedErrors) {
+  const std::string dir = ::testing::TempDir();
+  { std::ofstream(dir + "/self.yaml") << "materials: {include: self.yaml}\n"; }
+  auto self = InputNode::loadFile(dir + "/self.yaml");
+  auto e = errorOf([&] { fc::namedEntries(self["materials"]); });
+  EXPECT_EQ(e.line(), 1);
+  EXPECT_EQ(e.keyPath(), "materials.include");
+  EXPECT_NE(std::string(e.what()).find("include cycle"), std::string::npos) << e.what();
+  // a -> b -> a, found in b.
+  { std::ofstream(dir + "/ca.yaml") << "materials:\n  include: cb.yaml\n"; }
+  { std::ofstream(dir + "/cb.yaml") << "materials:\n  x: {type: isotropic, E: 1e9, nu: 0.3, rho: 1}\n  include: ca.yaml\n"; }
+  auto a = InputNode::loadFile(dir + "/ca.yaml");
+  auto e2 = errorOf([&] { fc::namedEntries(a["materials"]); });
+  EXPECT_EQ(e2.file(), dir + "/cb.yaml");
+  EXPECT_EQ(e2.line(), 3);
+  // The same file included twice side by side is not a cycle.
+  { std::ofstream(dir + "/leaf.yaml") << "y: {type: isotropic, E: 1e9, nu: 0.3, rho: 1}\n"; }
+  auto twice = InputNode::loadString("materials: {include: [leaf.yaml, leaf.yaml]}\n", dir + "/m.yaml");
+  EXPECT_EQ(fc::namedEntries(twice["materials"]).size(), 2u);
+}
+
+TEST(InputHardening, IncludeErrorsDoNotEchoTheIncludedFile) {
+  const std::string dir = ::testing::TempDir();
+  { std::ofstream(dir + "/secret.txt") << "root:$6$SECRETHASH:20228:0:99999:7:::\n"; }
+  { std::ofstream(dir + "/secret2.txt") << "SECRET-LINE with: {unbalanced\n"; }
+  for (const char* f : {"secret.txt", "secret2.txt"}) {
+    auto root = InputNode::loadString(std::string("materials: {include: ") + f + "}\n", dir + "/m.yaml");
+    auto e = errorOf([&] { fc::namedEntries(root["materials"]); });
+    EXPECT_EQ(e.file(), dir + "/m.yaml");
+    EXPECT_EQ(std::string(e.what()).find("SECRET"), std::string::npos) << e.what();
+  }
+}

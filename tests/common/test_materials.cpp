@@ -87,3 +87,27 @@ TEST(Materials, RotationPreservesStrainEnergy) {
   const Eigen::Matrix<double, 6, 1> v = voigt(eps), vp = voigt(R * eps * R.transpose());
   EXPECT_NEAR(v.dot(m.C * v), vp.dot(Cp * vp), 1e-9 * v.dot(m.C * v));
 }
+
+TEST(Materials, PhysicalRangesAreEnforced) {
+  // E = 1e-300 used to give an all-NaN section stiffness; GPa typed as Pa is the
+  // common mistake the lower bound catches.
+  EXPECT_THROW(fc::makeIsotropic("a", 1e-300, 0.3, 1600), std::invalid_argument);
+  EXPECT_THROW(fc::makeIsotropic("a", 70, 0.3, 2700), std::invalid_argument);
+  EXPECT_THROW(fc::makeIsotropic("a", 1e300, 0.3, 2700), std::invalid_argument);
+  EXPECT_THROW(fc::makeIsotropic("a", 70e9, 0.3, 1e-30), std::invalid_argument);
+  EXPECT_THROW(fc::makeIsotropic("a", 70e9, std::nan(""), 2700), std::invalid_argument);
+  EXPECT_THROW(fc::makeOrthotropic("b", 177e9, 10.8e9, 10.8e9, 7.6e9, 7.6e9, 1e-200, 0.27, 0.27,
+                                   0.5, 1600),
+               std::invalid_argument);
+  EXPECT_THROW(fc::makeAnisotropic("c", fc::Matrix6d::Identity() * 1e-100, 1600), std::invalid_argument);
+  fc::Matrix6d C = im6().C;
+  C(0, 0) = std::nan("");
+  EXPECT_THROW(fc::makeAnisotropic("c", C, 1600), std::invalid_argument);
+  try {
+    fc::makeIsotropic("alu", 70, 0.3, 2700);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("physical range"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(fc::makeIsotropic("foam", 1e5, 0.3, 30));
+  EXPECT_NO_THROW(fc::makeAnisotropic("im6a", im6().C, 1600));
+}
