@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "common/geo_script.h"
 #include "common/h5io.h"
 #include "common/input.h"
 #include "common/inspect.h"
@@ -17,8 +18,13 @@ int guardedMain(const std::string& tool, const std::function<int()>& body) {
   } catch (const H5Error& e) {
     std::cerr << tool << ": error: " << e.what() << "\n";
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << tool << ": error: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << tool << ": error: out of memory (the problem is too large for this machine; "
+                 "a coarser mesh or fewer modes needs less)\n";
+    return 1;
+  } catch (...) {
+    // Anything else (std::exception, gmsh's std::string...) is one line, never an abort.
+    std::cerr << tool << ": error: " << currentExceptionMessage() << "\n";
     return 1;
   }
 }

@@ -237,6 +237,24 @@ double InputNode::asPositive() const {
   return v;
 }
 
+double InputNode::asInRange(double lo, double hi, const std::string& unit,
+                            const std::string& why) const {
+  const double v = asDouble();
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream os;
+    os << "expected a value in [" << lo << ", " << hi << "] " << unit << ", got '" << node_.Scalar()
+       << "'";
+    if (!why.empty()) os << " (" << why << ")";
+    fail(os.str());
+  }
+  return v;
+}
+
+double InputNode::asLength(double lo, double hi) const {
+  if (!(asDouble() > 0)) fail("expected a positive length, got '" + node_.Scalar() + "'");
+  return asInRange(lo, hi, "m", "SI units; outside this range the value is a unit mistake or typo");
+}
+
 double InputNode::asNonNegative() const {
   double v = asDouble();
   if (v < 0) fail("expected a number >= 0, got '" + node_.Scalar() + "'");

@@ -60,6 +60,10 @@ class InputNode {
   double asDouble() const;
   double asPositive() const;              // > 0
   double asNonNegative() const;           // >= 0
+  // A number in [lo, hi] (a physical range); the error names the range and unit.
+  double asInRange(double lo, double hi, const std::string& unit, const std::string& why = "") const;
+  // A positive length in [lo, hi] m.
+  double asLength(double lo, double hi) const;
   long asInt() const;
   bool asBool() const;
   std::string asString() const;

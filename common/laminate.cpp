@@ -93,7 +93,8 @@ Laminate readPlies(const InputNode& plies, const MaterialLibrary& materials,
     p.allowKeys({"material", "thickness", "angle_deg"});
     Ply ply;
     ply.material = lookupMaterial(materials, p["material"]).name;
-    ply.thickness = p["thickness"].asPositive();
+    // 0.1 um (a coating) to 1 m: beyond, a unit mistake that meshing cannot survive.
+    ply.thickness = p["thickness"].asLength(1e-7, 1.0);
     ply.angle_deg = p.number("angle_deg", 0.0);
     lam.plies.push_back(ply);
   }

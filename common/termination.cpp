@@ -5,6 +5,8 @@
 
 #include <atomic>
 #include <cstring>
+#include <exception>
+#include <string>
 
 namespace fc {
 
@@ -68,9 +70,47 @@ extern "C" void onTerminationSignal(int sig) {
                                       : " (second termination signal); stopped at once\n");
 }
 
+std::string g_fatal_context;
+
+std::string exceptionMessage(std::exception_ptr p) {
+  if (!p) return "internal error (std::terminate without an exception)";
+  try {
+    std::rethrow_exception(p);
+  } catch (const std::bad_alloc&) {
+    return "out of memory";
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (const std::string& s) {
+    return s;
+  } catch (const char* s) {
+    return s ? s : "unknown error";
+  } catch (...) {
+    return "unknown error";
+  }
+}
+
+[[noreturn]] void onTerminate() {
+  const std::string msg = exceptionMessage(std::current_exception());
+  for (auto& slot : g_slots)
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  writeAll(g_prefix);
+  writeAll(": error: ");
+  writeAll(g_fatal_context.c_str());
+  writeAll(msg.c_str());
+  writeAll("\n");
+  ::_exit(g_fatal_context.empty() ? 1 : 2);
+}
+
 }  // namespace
 
+FatalErrorContext::FatalErrorContext(const std::string& prefix) : previous_(g_fatal_context) {
+  g_fatal_context = prefix;
+}
+
+FatalErrorContext::~FatalErrorContext() { g_fatal_context = previous_; }
+
 void installTerminationHandlers(const std::string& tool, TerminationPolicy policy) {
+  std::set_terminate(onTerminate);
   std::strncpy(g_prefix, tool.c_str(), sizeof g_prefix - 1);
   g_prefix[sizeof g_prefix - 1] = '\0';
   g_policy.store(static_cast<int>(policy));

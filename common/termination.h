@@ -73,6 +73,24 @@ class TemporaryRegistration {
   int slot_ = -1;
 };
 
+// Uncaught exceptions: a library that throws inside an OpenMP parallel region
+// (gmsh meshing a self-intersecting outline does) cannot be caught by any try
+// block, and the C++ runtime aborts. installTerminationHandlers also installs a
+// std::terminate handler that prints "TOOL: error: CONTEXT MESSAGE", removes the
+// registered temporaries and exits 2 (with a context: an input problem) or 1.
+// FatalErrorContext sets CONTEXT (e.g. "sec.yaml:6:9: section.file: cannot mesh
+// this section: gmsh: ") for the duration of a call into such a library.
+class FatalErrorContext {
+ public:
+  explicit FatalErrorContext(const std::string& prefix);
+  ~FatalErrorContext();
+  FatalErrorContext(const FatalErrorContext&) = delete;
+  FatalErrorContext& operator=(const FatalErrorContext&) = delete;
+
+ private:
+  std::string previous_;
+};
+
 // The signals this module handles, for tests and documentation.
 const int* terminationSignals(int* count);
 

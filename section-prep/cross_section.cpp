@@ -9,9 +9,11 @@
 #include <ctime>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "common/input.h"
 #include "section-prep/material_frame.h"
 #ifdef FLEXCOMP_SECTION_EIGEN_BLAS
 #include "section-prep/dense_kernels.h"
@@ -60,20 +62,33 @@ ElementNodes elementNodes(const SectionElement& e) {
   return en;
 }
 
+// An error about one element: located at its line when it came from a file.
+[[noreturn]] void elementError(const SectionMesh& mesh, const SectionElement& e, const std::string& msg) {
+  if (!mesh.source_file.empty() && e.source_line > 0)
+    throw InputError(mesh.source_file, e.source_line, 0, "element " + std::to_string(e.user_id), msg);
+  throw std::runtime_error("element " + std::to_string(e.user_id) + ": " + msg);
+}
+
 void checkMesh(const SectionMesh& mesh) {
   const long nn = static_cast<long>(mesh.nodes.size());
   if (mesh.elements.empty()) throw std::runtime_error("the section mesh has no elements");
+  for (const auto& m : mesh.materials) {
+    const std::string why = materialProblem(m);
+    if (!why.empty()) {
+      if (!mesh.source_file.empty()) throw InputError(mesh.source_file, 0, 0, m.name, why);
+      throw std::runtime_error("material '" + m.name + "': " + why);
+    }
+  }
   for (const auto& e : mesh.elements) {
-    const std::string where = "element " + std::to_string(e.user_id) + ": ";
     for (int n : e.nodes)
-      if (n >= nn) throw std::runtime_error(where + "node index out of range");
+      if (n >= nn) elementError(mesh, e, "node index out of range");
     const int corners = e.shape == ElementShape::Triangle ? 3 : 4;
     for (int k = 0; k < corners; ++k)
-      if (e.nodes[k] < 0) throw std::runtime_error(where + "a corner node is missing");
+      if (e.nodes[k] < 0) elementError(mesh, e, "a corner node is missing");
     if (e.shape == ElementShape::Triangle && (e.nodes[3] >= 0 || e.nodes[7] >= 0 || e.nodes[8] >= 0))
-      throw std::runtime_error(where + "a triangle uses node slots 1-3 and 5-7 only");
+      elementError(mesh, e, "a triangle uses node slots 1-3 and 5-7 only");
     if (e.material < 0 || e.material >= static_cast<int>(mesh.materials.size()))
-      throw std::runtime_error(where + "material index out of range");
+      elementError(mesh, e, "material index out of range");
   }
 }
 
@@ -256,8 +271,7 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
       }
       const double det = J00 * J11 - J01 * J10;
       if (!(std::abs(det) > 0) || !std::isfinite(det))
-        throw std::runtime_error("element " + std::to_string(el.user_id) +
-                                 " is degenerate (zero Jacobian): check its node order and coordinates");
+        elementError(mesh, el, "is degenerate (zero Jacobian): check its node order and coordinates");
       const double w = std::abs(det) * q.w;
       Eigen::Matrix<double, 9, 1> N, N2, N3;
       for (int a = 0; a < ne; ++a) {
@@ -513,7 +527,31 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
   }
   P.cpu_solves = lap();
   if (opt.progress) opt.progress("done", 1.0);
+  // A backstop after the input checks: no NaN/inf leaves the analysis.
+  if (!P.timoshenko.allFinite() || !P.classical.allFinite() || !P.mass.allFinite() ||
+      !std::isfinite(P.area) || !P.shear_center.allFinite() || !P.tension_center.allFinite())
+    throw std::runtime_error(
+        "the section analysis produced non-finite numbers: the mesh or the materials are "
+        "numerically degenerate (coordinates or moduli of wildly different magnitudes?)");
   return P;
+}
+
+std::string materialProblem(const SectionMaterial& m) {
+  if (!m.C.allFinite()) return "its stiffness holds a non-finite number";
+  if (!std::isfinite(m.rho) || m.rho < 0) return "its density must be a finite number >= 0";
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(0.5 * (m.C + m.C.transpose()), Eigen::EigenvaluesOnly);
+  const double lo = es.eigenvalues().minCoeff(), hi = es.eigenvalues().maxCoeff();
+  if (!(lo > 0)) return "its stiffness is not positive definite";
+  constexpr double kMaxCondition = 1e5;
+  if (hi / lo > kMaxCondition) {
+    std::ostringstream os;
+    os << "its stiffness has a condition number of " << hi / lo << " (above " << kMaxCondition
+       << "): nearly incompressible (nu above 0.49998 if isotropic) or wildly anisotropic; "
+          "section-prep's displacement elements lock there and the shear stiffness would be "
+          "wrong (300x at nu = 0.49999999)";
+    return os.str();
+  }
+  return "";
 }
 
 }  // namespace fc::section

@@ -52,10 +52,26 @@ int main(int argc, char** argv) {
     AnalysisOptions opt;
     std::vector<std::string> inputs{input};
     if (isYaml(input)) {
-      const SectionSpec spec = readSectionSpec(fc::InputNode::loadFile(input));
+      const fc::InputNode root = fc::InputNode::loadFile(input);
+      const SectionSpec spec = readSectionSpec(root);
       if (!spec.mesh_file.empty()) inputs.push_back(spec.mesh_file);
+      fc::checkOutputIsNotAnInput(output, inputs);
       if (!quiet) std::cerr << "section-prep: meshing with gmsh\n";
-      mesh = meshSection(spec);
+      // Errors are located at the key that chose the geometry: the mesh file or the section.
+      const fc::InputNode sec = root["section"];
+      const fc::InputNode where = sec.has("file") ? sec["file"] : sec;
+      try {
+        // gmsh may throw inside its OpenMP meshing loop, where no catch reaches:
+        // the terminate handler then reports it with this location.
+        const fc::FatalErrorContext context(
+            fc::InputError(where.file(), where.line(), where.column(), where.path(),
+                           "cannot mesh this section: ").what());
+        mesh = meshSection(spec);
+      } catch (const fc::InputError&) {
+        throw;
+      } catch (const std::exception& e) {
+        where.fail(std::string("cannot mesh this section: ") + e.what());
+      }
     } else {
       VabsModel m = readVabsFile(input);
       mesh = std::move(m.mesh);

@@ -19,6 +19,14 @@ struct SectionMaterial {
   double rho = 0.0;
 };
 
+// Why a material cannot be used by section-prep's displacement elements, or "".
+// Nearly incompressible materials (bulk over shear modulus above ~3e4, i.e.
+// nu > 0.49998 when isotropic) lock them: measured on a solid circle, the shear
+// stiffness is right to 1e-4 up to nu = 0.49999 but 7% off at 0.499999 and 300x
+// too small at 0.49999999 (docs/robustness.md). Voigt C's eigenvalues are 3K and
+// G-like values, so the bound is on its condition number.
+std::string materialProblem(const SectionMaterial& m);
+
 enum class ElementShape { Triangle, Quadrilateral };
 
 // Node slots follow VABS: quadrilateral corners 0-3 counter-clockwise, mid-sides
@@ -36,9 +44,11 @@ struct SectionElement {
   bool theta1_nodal = false;
   std::array<double, 9> theta1_deg{};
   int user_id = 0;             // element number in the user's file, for messages
+  int source_line = 0;         // its line in that file (VABS .sg), 0 when meshed here
 };
 
 struct SectionMesh {
+  std::string source_file;     // the .sg file read, for located errors ("" when meshed)
   std::vector<Eigen::Vector2d> nodes;
   std::vector<SectionElement> elements;
   std::vector<SectionMaterial> materials;

@@ -2,6 +2,8 @@
 
 #include <gmsh.h>
 
+#include "common/geo_script.h"
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -16,7 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 // Holds gmsh open for one meshing and closes it on every path out.
 struct GmshSession {
   GmshSession() {
-    gmsh::initialize();
+    // No configuration files (~/.gmshrc may hold commands): geometry only.
+    gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::model::add("section");
   }
@@ -200,11 +203,29 @@ bool vabsSlots(int type, ElementShape& shape, std::vector<int>& slots) {
   }
 }
 
+SectionMesh meshSectionWithGmsh(const SectionSpec& spec);
+
 }  // namespace
 
 double theta1FromNormal(double n2, double n3) { return std::atan2(-n2, n3) * 180.0 / kPi; }
 
 SectionMesh meshSection(const SectionSpec& spec) {
+  // A .geo file is a program: refuse shell, file and exit commands before gmsh runs it.
+  if (spec.shape == SectionSpec::Shape::Mesh) checkGmshInput(spec.mesh_file);
+  try {
+    return meshSectionWithGmsh(spec);
+  } catch (const InputError&) {
+    throw;
+  } catch (...) {
+    // gmsh reports geometry and syntax errors by throwing std::string: one error,
+    // never an abort.
+    throw std::runtime_error("gmsh: " + currentExceptionMessage());
+  }
+}
+
+namespace {
+
+SectionMesh meshSectionWithGmsh(const SectionSpec& spec) {
   GmshSession session;
   std::vector<std::pair<std::vector<int>, Region>> regions;
   bool needs_meshing = true;
@@ -232,6 +253,22 @@ SectionMesh meshSection(const SectionSpec& spec) {
       gmsh::option::setNumber("Mesh.MeshSizeMax", h);
       gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
       gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 24);
+    }
+    if (spec.shape == SectionSpec::Shape::Mesh) {
+      // The file's own sizes are unknown before meshing: a floor on the element
+      // size keeps the count near max_elements over the model's bounding box.
+      double x0, y0, z0, x1, y1, z1;
+      gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+      const double area = std::max((x1 - x0) * (y1 - y0), 0.0);
+      const double floor = std::sqrt(4.0 * area / (std::sqrt(3.0) * static_cast<double>(spec.max_elements)));
+      if (spec.mesh_size > 0 && spec.mesh_size < floor) {
+        std::ostringstream os;
+        os << spec.mesh_file << ": mesh_size " << spec.mesh_size << " m over a " << (x1 - x0) << " x "
+           << (y1 - y0) << " m section gives more than max_elements: " << spec.max_elements
+           << " elements; use a larger mesh_size or raise max_elements in the section block";
+        throw std::runtime_error(os.str());
+      }
+      if (std::isfinite(floor) && floor > 0) gmsh::option::setNumber("Mesh.MeshSizeMin", floor);
     }
     gmsh::option::setNumber("Mesh.ElementOrder", 2);
     gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
@@ -280,7 +317,14 @@ SectionMesh meshSection(const SectionSpec& spec) {
     }
   }
   if (mesh.elements.empty()) throw std::runtime_error("meshing produced no elements");
+  if (static_cast<long>(mesh.elements.size()) > 2 * spec.max_elements)
+    throw std::runtime_error("meshing produced " + std::to_string(mesh.elements.size()) +
+                             " elements, more than twice max_elements: " +
+                             std::to_string(spec.max_elements) +
+                             "; use a larger mesh_size or raise max_elements");
   return mesh;
 }
+
+}  // namespace
 
 }  // namespace fc::section

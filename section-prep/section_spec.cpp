@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
+#include <sstream>
 
 #include "common/files.h"
 #include "common/laminate.h"
@@ -53,7 +55,7 @@ void readWall(SectionSpec& spec, std::map<std::string, int>& index, const InputN
     wall.fail("expected exactly one of {material, thickness}, {plies: [...]} or {laminate: NAME}");
   if (wall.has("material")) {
     const Material& m = lookupMaterial(lib, wall["material"]);
-    spec.plies.push_back({materialIndex(spec, index, m), wall["thickness"].asPositive(), 0.0});
+    spec.plies.push_back({materialIndex(spec, index, m), wall["thickness"].asLength(1e-7, 1.0), 0.0});
   } else {
     readLayup(spec, index, wall, lib, lams);
   }
@@ -80,24 +82,31 @@ SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
   SectionSpec spec;
   std::map<std::string, int> index;
   const std::string shape = s["shape"].asString();
-  if (s.has("mesh_size")) spec.mesh_size = s["mesh_size"].asPositive();
+  // Cross-section dimensions from 1 um to 100 m: outside, a unit mistake (1e-150,
+  // a width of 1e6 m) that would make gmsh fail or exhaust memory.
+  constexpr double kMinLength = 1e-6, kMaxLength = 100.0;
+  if (s.has("mesh_size")) spec.mesh_size = s["mesh_size"].asLength(1e-9, kMaxLength);
+  if (s.has("max_elements")) {
+    spec.max_elements = s["max_elements"].asInt();
+    if (spec.max_elements < 1) s["max_elements"].fail("expected a positive element count");
+  }
   if (shape == "solid_circle") {
-    s.allowKeys({"shape", "diameter", "material", "mesh_size"});
+    s.allowKeys({"shape", "diameter", "material", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::SolidCircle;
-    spec.diameter = s["diameter"].asPositive();
+    spec.diameter = s["diameter"].asLength(kMinLength, kMaxLength);
     spec.material = materialIndex(spec, index, lookupMaterial(lib, s["material"]));
   } else if (shape == "tube") {
-    s.allowKeys({"shape", "outer_diameter", "wall", "mesh_size"});
+    s.allowKeys({"shape", "outer_diameter", "wall", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::Tube;
-    spec.outer_diameter = s["outer_diameter"].asPositive();
+    spec.outer_diameter = s["outer_diameter"].asLength(kMinLength, kMaxLength);
     readWall(spec, index, s["wall"], lib, lams);
     if (totalThickness(spec.plies) >= 0.5 * spec.outer_diameter)
       s["wall"].fail("the wall is as thick as the tube's radius or thicker; use shape: solid_circle");
   } else if (shape == "rectangle") {
-    s.allowKeys({"shape", "width", "height", "material", "plies", "laminate", "mesh_size"});
+    s.allowKeys({"shape", "width", "height", "material", "plies", "laminate", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::Rectangle;
-    spec.width = s["width"].asPositive();
-    spec.height = s["height"].asPositive();
+    spec.width = s["width"].asLength(kMinLength, kMaxLength);
+    spec.height = s["height"].asLength(kMinLength, kMaxLength);
     if (s.has("material") == (s.has("plies") || s.has("laminate")))
       s.fail("a rectangle takes either material: or plies: (stacked along x3)");
     if (s.has("material")) {
@@ -111,15 +120,15 @@ SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
             std::to_string(spec.height) + " m; expected them to fill the height");
     }
   } else if (shape == "box") {
-    s.allowKeys({"shape", "width", "height", "wall", "mesh_size"});
+    s.allowKeys({"shape", "width", "height", "wall", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::Box;
-    spec.width = s["width"].asPositive();
-    spec.height = s["height"].asPositive();
+    spec.width = s["width"].asLength(kMinLength, kMaxLength);
+    spec.height = s["height"].asLength(kMinLength, kMaxLength);
     readWall(spec, index, s["wall"], lib, lams);
     if (2 * totalThickness(spec.plies) >= std::min(spec.width, spec.height))
       s["wall"].fail("the wall fills the box; expected a total thickness below half the smaller side");
   } else if (shape == "mesh") {
-    s.allowKeys({"shape", "file", "mesh_size"});
+    s.allowKeys({"shape", "file", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::Mesh;
     spec.mesh_file = resolveRelativeTo(s.file(), s["file"].asString());
     for (const auto& [name, m] : lib) materialIndex(spec, index, m);
@@ -127,7 +136,55 @@ SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
     s["shape"].fail("unknown shape '" + shape +
                     "'; expected solid_circle, tube, rectangle, box or mesh");
   }
+  for (const auto& m : spec.materials)
+    if (const std::string why = materialProblem(m); !why.empty())
+      s.fail("material '" + m.name + "' cannot be used in a section: " + why);
+  // Refuse, before meshing, a mesh that would exhaust memory or run for hours.
+  if (spec.shape != SectionSpec::Shape::Mesh) {
+    const double h = spec.mesh_size > 0 ? spec.mesh_size : automaticMeshSize(spec);
+    const double n = estimatedElements(spec, h);
+    if (n > static_cast<double>(spec.max_elements)) {
+      std::ostringstream os;
+      os << "element size " << h << " m gives about " << std::setprecision(2) << n
+         << " elements, more than the limit max_elements: " << spec.max_elements
+         << " (about 1.5 GB and minutes per 400000); use a larger mesh_size, or raise "
+            "max_elements in the section block if the machine can take it";
+      (s.has("mesh_size") ? s["mesh_size"] : s).fail(os.str());
+    }
+  }
   return spec;
+}
+
+double sectionArea(const SectionSpec& spec) {
+  constexpr double kPi = 3.14159265358979323846;
+  double d = 0;
+  for (const auto& p : spec.plies) d += p.thickness;
+  switch (spec.shape) {
+    case SectionSpec::Shape::SolidCircle: return kPi * spec.diameter * spec.diameter / 4;
+    case SectionSpec::Shape::Tube: {
+      const double R = spec.outer_diameter / 2, r = R - d;
+      return kPi * (R * R - r * r);
+    }
+    case SectionSpec::Shape::Rectangle: return spec.width * spec.height;
+    case SectionSpec::Shape::Box:
+      return spec.width * spec.height - (spec.width - 2 * d) * (spec.height - 2 * d);
+    case SectionSpec::Shape::Mesh: return 0;
+  }
+  return 0;
+}
+
+double estimatedElements(const SectionSpec& spec, double h) {
+  // Equilateral triangles of side h have area sqrt(3)/4 h^2; a ply thinner than h
+  // still gets a row of about 2 L / t triangles of side ~t along its length L.
+  constexpr double kPi = 3.14159265358979323846;
+  double n = sectionArea(spec) * 4.0 / (std::sqrt(3.0) * h * h);
+  double L = 0;
+  if (spec.shape == SectionSpec::Shape::Tube) L = kPi * spec.outer_diameter;
+  if (spec.shape == SectionSpec::Shape::Box) L = 2 * (spec.width + spec.height);
+  if (spec.shape == SectionSpec::Shape::Rectangle) L = spec.width;
+  for (const auto& p : spec.plies)
+    if (p.thickness < h) n += 2 * L / p.thickness;
+  return n;
 }
 
 double automaticMeshSize(const SectionSpec& spec) {

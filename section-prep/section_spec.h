@@ -17,6 +17,9 @@ struct PlySpec {
   double angle_deg = 0.0;  // theta3: fibre from x1, about the wall's outward normal
 };
 
+// About 1.5 GB and a few minutes of section-prep; `max_elements:` raises it.
+constexpr long kDefaultMaxElements = 400000;
+
 struct SectionSpec {
   enum class Shape { SolidCircle, Tube, Rectangle, Box, Mesh };
   Shape shape = Shape::SolidCircle;
@@ -24,6 +27,7 @@ struct SectionSpec {
   int material = -1;            // homogeneous section or wall
   std::vector<PlySpec> plies;   // tube and box: outer surface inwards; rectangle: bottom up
   double mesh_size = 0;         // element size; 0 = automatic
+  long max_elements = kDefaultMaxElements;  // refuse meshes estimated larger (memory, time)
   std::string mesh_file;        // shape mesh: absolute or relative to the YAML file
   std::vector<SectionMaterial> materials;
 };
@@ -39,5 +43,11 @@ SectionSpec readSectionSpec(const InputNode& section, const MaterialLibrary& mat
 // The automatic element size: a twentieth of the section's smallest outer
 // dimension, and no larger than the thinnest ply so each ply gets elements.
 double automaticMeshSize(const SectionSpec& spec);
+
+// Area of the section's outer shape (m^2) for the YAML shapes; 0 for mesh files.
+double sectionArea(const SectionSpec& spec);
+// Triangles gmsh makes for element size h over `area`, with thin plies (thinner
+// than h) each getting their own row of elements along the wall.
+double estimatedElements(const SectionSpec& spec, double h);
 
 }  // namespace fc::section

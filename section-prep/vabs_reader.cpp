@@ -150,6 +150,7 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
     ts.failAt(ts.lastLine(), "nnode nelem nmate", "expected positive counts");
 
   SectionMesh& mesh = model.mesh;
+  mesh.source_file = name;
   mesh.nodes.resize(nnode);
   std::map<long, long> node_index;
   for (long i = 0; i < nnode; ++i) {
@@ -157,6 +158,12 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
     const long id = static_cast<long>(v[0]);
     if (!node_index.emplace(id, i).second)
       ts.failAt(ts.lastLine(), "node " + std::to_string(id), "node number used twice");
+    // Any length unit (VABS decks use m, mm or inches), but within 1e4 units of the
+    // origin: a 1e30 coordinate made every stiffness NaN.
+    if (std::abs(v[1]) > 1e4 || std::abs(v[2]) > 1e4)
+      ts.failAt(ts.lastLine(), "node " + std::to_string(id),
+                "coordinates beyond 1e4 length units from the origin; expected the section's "
+                "own coordinates");
     mesh.nodes[i] = Eigen::Vector2d(v[1], v[2]);
   }
 
@@ -171,6 +178,7 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
                                 std::to_string(v.size()) + " numbers");
     SectionElement& el = mesh.elements[e];
     el.user_id = static_cast<int>(v[0]);
+    el.source_line = line;
     if (!elem_index.emplace(el.user_id, e).second)
       ts.failAt(line, "element " + std::to_string(el.user_id), "element number used twice");
     // VABS: a triangle has node slot 4 zero (slots 5-7 its mid-sides).
@@ -258,6 +266,7 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
     }
     if (!mat.C.allFinite() || mat.C.llt().info() != Eigen::Success)
       ts.failAt(ts.lastLine(), wm, "the stiffness matrix is not positive definite");
+    if (const std::string why = materialProblem(mat); !why.empty()) ts.failAt(ts.lastLine(), wm, why);
     if (damping != 0) ts.numbers(1, wm + " damping coefficient");
     mat.rho = ts.numbers(1, wm + " density")[0];
     if (mat.rho < 0) ts.failAt(ts.lastLine(), wm + " density", "expected a non-negative density");
@@ -268,7 +277,7 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
   for (long e = 0; e < nelem; ++e) {
     SectionElement& el = mesh.elements[e];
     if (!seen[e])
-      ts.failAt(0, "element " + std::to_string(el.user_id), "has no orientation record");
+      ts.failAt(el.source_line, "element " + std::to_string(el.user_id), "has no orientation record");
     long mid = material_id[e];
     if (format_flag == 1) {
       auto it = layers.find(layer_of[e]);

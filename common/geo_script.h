@@ -1,0 +1,23 @@
+#pragma once
+// gmsh input files are programs: a .geo script can run shell commands (System,
+// SystemCall), end the calling process with status 0 (Exit, Abort), read or write
+// arbitrary files (Include, Merge, Save, Print, Printf > file) or sleep. flexcomp
+// reads geometry only, so before gmsh opens a file:
+//   - only .geo (a script) and .msh (data) files are accepted;
+//   - a .geo file is scanned (comments and strings skipped) and any of those
+//     commands is an InputError naming the file, line and column.
+// gmsh has no option that disables these commands, hence the scan.
+#include <string>
+#include <vector>
+
+namespace fc {
+
+void checkGmshInput(const std::string& path);
+// The refused .geo commands (for documentation and tests).
+const std::vector<std::string>& refusedGeoCommands();
+
+// Message of the exception being handled, whatever its type: gmsh throws
+// std::string, some libraries const char*. Call only inside a catch block.
+std::string currentExceptionMessage();
+
+}  // namespace fc
