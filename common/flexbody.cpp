@@ -2,6 +2,8 @@
 
 #include <hdf5.h>
 
+#include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -76,8 +78,18 @@ std::vector<double> readLeading(const H5File& f, const std::string& path,
   H5Sselect_hyperslab(fspace.id, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Handle mspace{H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose};
   if (H5Dread(set.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, H5P_DEFAULT, out.data()) < 0)
-    throw H5Error(f.path() + ": cannot read dataset " + path);
+    throw H5Error(f.path() + ": cannot read dataset " + path + " as numbers");
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (!std::isfinite(out[i]))
+      throw H5Error(f.path() + ": dataset " + path + " holds a non-finite value (" +
+                    std::to_string(out[i]) + " at flat index " + std::to_string(i) + ")");
   return out;
+}
+
+double finiteScalar(const H5File& f, const std::string& path) {
+  const double v = f.readScalar(path);
+  if (!std::isfinite(v)) throw H5Error(f.path() + ": " + path + " is not a finite number");
+  return v;
 }
 
 // Row-major (rows, cols) block into an Eigen matrix.
@@ -217,6 +229,40 @@ void setRigidPropertiesFromLumpedMasses(FlexBody& body) {
 
 // ---------------------------------------------------------------------------
 
+std::string flexBodyPhysicalProblem(const FlexBody& body) {
+  std::ostringstream os;
+  os << std::setprecision(4);
+  if (!(body.mass > 0) || !std::isfinite(body.mass)) {
+    os << "its mass is " << body.mass << " kg; expected a positive mass";
+    return os.str();
+  }
+  if (!body.center_of_mass.allFinite() || !body.inertia_tensor.allFinite())
+    return "its centre of mass or inertia tensor holds a non-finite number";
+  // About the centre of mass (parallel axes): a rigid body's equations need it
+  // positive definite, else its mass matrix is singular and no integrator can run.
+  const Eigen::Vector3d c = body.center_of_mass;
+  const Eigen::Matrix3d Ic = body.inertia_tensor - body.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (Ic + Ic.transpose()));
+  const Eigen::Vector3d p = es.eigenvalues();
+  const double scale = std::max(p.cwiseAbs().maxCoeff(), 1e-300);
+  if (p.minCoeff() <= 1e-10 * scale) {
+    const Eigen::Vector3d axis = es.eigenvectors().col(0);
+    os << "its inertia tensor about the centre of mass is singular (principal moments " << p(0) << ", "
+       << p(1) << ", " << p(2) << " kg m^2; the smallest about the axis [" << axis.x() << ", "
+       << axis.y() << ", " << axis.z()
+       << "]): all its mass lies on a line, e.g. a beam whose section mass has no rotary inertia; "
+          "give the section its rotary (polar) inertia";
+    return os.str();
+  }
+  // Triangle inequalities of principal moments (a physical mass distribution).
+  if (p(0) + p(1) < p(2) * (1 - 1e-9)) {
+    os << "its principal moments " << p(0) << ", " << p(1) << ", " << p(2)
+       << " kg m^2 violate the triangle inequality: no mass distribution has them";
+    return os.str();
+  }
+  return "";
+}
+
 void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaInvariants& inv,
                    const Provenance& prov) {
   try {
@@ -224,6 +270,8 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("cannot write flexible body file ") + e.what());
   }
+  if (const std::string why = flexBodyPhysicalProblem(body); !why.empty())
+    throw std::invalid_argument("body '" + body.name + "': " + why);
   const long n = body.nodeCount();
   const int nm = body.modeCount();
   const hsize_t un = static_cast<hsize_t>(n), um = static_cast<hsize_t>(nm);
@@ -327,13 +375,13 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
   b.eigenvalues = Eigen::Map<const Eigen::VectorXd>(ev.data(), nm);
   b.frequencies_hz = Eigen::Map<const Eigen::VectorXd>(fr.data(), nm);
 
-  b.mass = f.readScalar("/inertia/mass");
+  b.mass = finiteScalar(f, "/inertia/mass");
   const std::vector<double> com = readLeading(f, "/inertia/center_of_mass", {3}, {true});
   b.center_of_mass = Eigen::Vector3d(com[0], com[1], com[2]);
   b.inertia_tensor = rowMajor(readLeading(f, "/inertia/tensor", {3, 3}, {true, true}), 3, 3);
   if (f.exists("/inertia/exact/mass")) {
     b.has_exact_inertia = true;
-    b.exact_mass = f.readScalar("/inertia/exact/mass");
+    b.exact_mass = finiteScalar(f, "/inertia/exact/mass");
     const std::vector<double> ec = readLeading(f, "/inertia/exact/center_of_mass", {3}, {true});
     b.exact_center_of_mass = Eigen::Vector3d(ec[0], ec[1], ec[2]);
     b.exact_inertia_tensor = rowMajor(readLeading(f, "/inertia/exact/tensor", {3, 3}, {true, true}), 3, 3);
@@ -353,7 +401,7 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
 
   InertiaInvariants& inv = out.invariants;
   inv.n_modes = nm;
-  inv.mass = f.readScalar("/invariants/mass");
+  inv.mass = finiteScalar(f, "/invariants/mass");
   const std::vector<double> s0 = readLeading(f, "/invariants/first_moment", {3}, {true});
   inv.first_moment = Eigen::Vector3d(s0[0], s0[1], s0[2]);
   inv.second_moment = rowMajor(readLeading(f, "/invariants/second_moment", {3, 3}, {true, true}), 3, 3);
@@ -374,9 +422,13 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
   inv.rotary_modal_mass =
       rowMajor(readLeading(f, "/invariants/rotary_modal_mass", {um, um}, {false, false}), nm, nm);
 
+  if (const std::string why = flexBodyPhysicalProblem(b); !why.empty())
+    throw H5Error(path + ": body '" + b.name + "': " + why);
+
   if (parts == FlexBodyParts::All) {
-    b.nodes = f.readMatrix("/mesh/nodes");
-    if (b.nodes.cols() != 3) throw H5Error(path + ": /mesh/nodes must be (n_nodes, 3)");
+    const std::vector<hsize_t> nd = f.shape("/mesh/nodes");
+    if (nd.size() != 2 || nd[1] != 3) throw H5Error(path + ": /mesh/nodes must be (n_nodes, 3), got " + dimsText(nd));
+    b.nodes = f.readMatrix("/mesh/nodes", static_cast<Eigen::Index>(nd[0]), 3);
     const long n = b.nodes.rows();
     const hsize_t un = static_cast<hsize_t>(n);
     for (const std::string& child : f.children("/mesh")) {

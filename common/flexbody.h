@@ -112,6 +112,11 @@ void setRigidPropertiesFromLumpedMasses(FlexBody& body);
 // Writes the contract layout ("flexbody/1") and the invariants under /invariants/
 // atomically: the file appears whole or not at all. Throws fc::H5Error or
 // std::invalid_argument (inconsistent sizes) naming the file.
+// Why a body cannot be simulated (non-positive mass, singular or impossible
+// inertia about the centre of mass), or "". writeFlexBody refuses such a body
+// (std::invalid_argument naming it and the cause) and readFlexBody such a file.
+std::string flexBodyPhysicalProblem(const FlexBody& body);
+
 void writeFlexBody(const std::string& path, const FlexBody& body,
                    const InertiaInvariants& invariants, const Provenance& provenance);
 

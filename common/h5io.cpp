@@ -194,10 +194,11 @@ std::vector<std::string> H5File::children(const std::string& group_path) const {
   Handle g(H5Gopen2(id_, group_path.c_str(), H5P_DEFAULT), H5Gclose);
   if (!g.ok()) throw H5Error(path_ + ": no group " + group_path);
   H5G_info_t info;
-  H5Gget_info(g.get(), &info);
+  if (H5Gget_info(g.get(), &info) < 0) throw H5Error(path_ + ": cannot list group " + group_path);
   for (hsize_t i = 0; i < info.nlinks; ++i) {
     ssize_t n = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
                                    H5P_DEFAULT);
+    if (n < 0 || n > 4096) throw H5Error(path_ + ": unreadable link name in " + group_path);
     std::string name(static_cast<std::size_t>(n), '\0');
     H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), n + 1,
                        H5P_DEFAULT);
@@ -296,6 +297,41 @@ bool H5File::hasAttribute(const std::string& object_path, const std::string& nam
   return H5Aexists(obj.get(), name.c_str()) > 0;
 }
 
+namespace {
+
+// One string from an attribute or a scalar dataset, fixed or variable length.
+// h5py writes variable-length UTF-8 strings: the memory type must carry the
+// file's character set, or HDF5 refuses the conversion (and the unchecked read
+// used to return "" - a section file written from Python had `format` "").
+std::string readStringValue(hid_t obj, hid_t ftype, bool is_attribute, const std::string& what) {
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_cset(mtype.get(), H5Tget_cset(ftype));
+  if (H5Tis_variable_str(ftype) > 0) {
+    H5Tset_size(mtype.get(), H5T_VARIABLE);
+    char* s = nullptr;
+    const herr_t rc = is_attribute ? H5Aread(obj, mtype.get(), &s)
+                                   : H5Dread(obj, mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &s);
+    if (rc < 0) throw H5Error(what + ": cannot read the string" + hdf5ErrorReason());
+    std::string out = s ? s : "";
+    H5free_memory(s);
+    return out;
+  }
+  // One byte more than stored: a NULLTERM memory type of the same size would
+  // drop the last character of a NULLPAD string.
+  const std::size_t stored = H5Tget_size(ftype);
+  if (stored == 0 || stored > (1u << 24)) throw H5Error(what + ": implausible string size");
+  const std::size_t n = stored + 1;
+  std::string buf(n, '\0');
+  H5Tset_size(mtype.get(), n);
+  const herr_t rc = is_attribute
+                        ? H5Aread(obj, mtype.get(), buf.data())
+                        : H5Dread(obj, mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data());
+  if (rc < 0) throw H5Error(what + ": cannot read the string" + hdf5ErrorReason());
+  return buf.substr(0, buf.find('\0'));
+}
+
+}  // namespace
+
 std::string H5File::stringAttribute(const std::string& object_path,
                                     const std::string& name) const {
   Handle obj = openObject(id_, path_, object_path);
@@ -304,31 +340,25 @@ std::string H5File::stringAttribute(const std::string& object_path,
   Handle ftype(H5Aget_type(attr.get()), H5Tclose);
   if (H5Tget_class(ftype.get()) != H5T_STRING)
     throw H5Error(path_ + ": attribute '" + name + "' on " + object_path + " is not a string");
-  if (H5Tis_variable_str(ftype.get()) > 0) {
-    Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
-    H5Tset_size(mtype.get(), H5T_VARIABLE);
-    char* s = nullptr;
-    H5Aread(attr.get(), mtype.get(), &s);
-    std::string out = s ? s : "";
-    H5free_memory(s);
-    return out;
-  }
-  // One byte more than stored: a NULLTERM memory type of the same size would
-  // drop the last character of a NULLPAD string.
-  const std::size_t n = H5Tget_size(ftype.get()) + 1;
-  std::string buf(n, '\0');
-  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(mtype.get(), n);
-  H5Aread(attr.get(), mtype.get(), buf.data());
-  return buf.substr(0, buf.find('\0'));
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1)
+    throw H5Error(path_ + ": attribute '" + name + "' on " + object_path + " is not a single string");
+  return readStringValue(attr.get(), ftype.get(), /*is_attribute=*/true,
+                         path_ + ": attribute '" + name + "' on " + object_path);
 }
 
 double H5File::doubleAttribute(const std::string& object_path, const std::string& name) const {
   Handle obj = openObject(id_, path_, object_path);
   Handle attr(H5Aopen(obj.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
   if (!attr.ok()) throw H5Error(path_ + ": no attribute '" + name + "' on " + object_path);
+  Handle type(H5Aget_type(attr.get()), H5Tclose);
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if ((cls != H5T_FLOAT && cls != H5T_INTEGER) || H5Sget_simple_extent_npoints(space.get()) != 1)
+    throw H5Error(path_ + ": attribute '" + name + "' on " + object_path + " is not a number");
   double v = 0;
-  H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v);
+  if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    throw H5Error(path_ + ": attribute '" + name + "' on " + object_path + " cannot be read as a number");
   return v;
 }
 
@@ -337,6 +367,7 @@ std::vector<hsize_t> H5File::shape(const std::string& path) const {
   if (!dset.ok()) throw H5Error(path_ + ": missing dataset " + path);
   Handle space(H5Dget_space(dset.get()), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw H5Error(path_ + ": unreadable shape of " + path);
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   return dims;
@@ -348,8 +379,16 @@ std::vector<T> readAll(hid_t file, const std::string& fname, const std::string& 
                        hid_t mem_type) {
   Handle dset(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dset.ok()) throw H5Error(fname + ": missing dataset " + path);
+  // Numbers only: HDF5 would otherwise try (and fail, or worse) to convert strings,
+  // compounds or references.
+  Handle type(H5Dget_type(dset.get()), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    throw H5Error(fname + ": dataset " + path + " holds " +
+                  (cls == H5T_STRING ? "text" : "non-numeric data") + ", expected numbers");
   Handle space(H5Dget_space(dset.get()), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) throw H5Error(fname + ": unreadable shape of dataset " + path);
   std::vector<T> out(static_cast<std::size_t>(n));
   if (n > 0 && H5Dread(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw H5Error(fname + ": cannot read dataset " + path + " as numbers");
@@ -369,6 +408,19 @@ Eigen::MatrixXd H5File::readMatrix(const std::string& path) const {
   const Eigen::Index cols = dims.size() == 2 ? static_cast<Eigen::Index>(dims[1]) : 1;
   return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
       data.data(), rows, cols);
+}
+
+Eigen::MatrixXd H5File::readMatrix(const std::string& path, Eigen::Index rows, Eigen::Index cols) const {
+  const auto dims = shape(path);
+  if (dims.size() != 2 || dims[0] != static_cast<hsize_t>(rows) || dims[1] != static_cast<hsize_t>(cols)) {
+    std::string got;
+    for (std::size_t i = 0; i < dims.size(); ++i) got += (i ? " x " : "") + std::to_string(dims[i]);
+    throw H5Error(path_ + ": " + path + " must be a " + std::to_string(rows) + " x " +
+                  std::to_string(cols) + " matrix, got " + (dims.empty() ? "a scalar" : got));
+  }
+  const Eigen::MatrixXd m = readMatrix(path);
+  if (!m.allFinite()) throw H5Error(path_ + ": " + path + " holds NaN or infinite values");
+  return m;
 }
 
 Eigen::VectorXd H5File::readVector(const std::string& path) const {
@@ -396,12 +448,12 @@ std::string H5File::readString(const std::string& path) const {
   Handle dset(H5Dopen2(id_, path.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dset.ok()) throw H5Error(path_ + ": missing dataset " + path);
   Handle ftype(H5Dget_type(dset.get()), H5Tclose);
-  const std::size_t n = H5Tget_size(ftype.get()) + 1;
-  std::string buf(n, '\0');
-  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(mtype.get(), n);
-  H5Dread(dset.get(), mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data());
-  return buf.substr(0, buf.find('\0'));
+  if (H5Tget_class(ftype.get()) != H5T_STRING)
+    throw H5Error(path_ + ": dataset " + path + " is not text");
+  Handle space(H5Dget_space(dset.get()), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1)
+    throw H5Error(path_ + ": dataset " + path + " is not a single string");
+  return readStringValue(dset.get(), ftype.get(), /*is_attribute=*/false, path_ + ": " + path);
 }
 
 int H5File::checkFormat(const std::string& kind, int max_version) const {

@@ -69,6 +69,8 @@ class H5File {
 
   std::vector<hsize_t> shape(const std::string& path) const;
   Eigen::MatrixXd readMatrix(const std::string& path) const;  // rank 1 -> (n, 1)
+  // Exactly (rows, cols) and finite, else H5Error naming the file, dataset and shape.
+  Eigen::MatrixXd readMatrix(const std::string& path, Eigen::Index rows, Eigen::Index cols) const;
   Eigen::VectorXd readVector(const std::string& path) const;
   double readScalar(const std::string& path) const;
   long readInt(const std::string& path) const;

@@ -22,10 +22,12 @@ void listDatasets(const H5File& f, const std::string& group, int depth, std::ost
       os << ")";
       if (dims.empty() || (dims.size() == 1 && dims[0] == 1)) {
         try {
-          os << " = " << f.readScalar(path);
+          const double v = f.readScalar(path);
+          os << " = " << v;
         } catch (const H5Error&) {
           try {
-            os << " = \"" << f.readString(path) << "\"";
+            const std::string v = f.readString(path);
+            os << " = \"" << v << "\"";
           } catch (const H5Error&) {
           }
         }
@@ -49,7 +51,7 @@ void listDatasets(const H5File& f, const std::string& group, int depth, std::ost
 void summarise(const H5File& f, const std::string& kind, std::ostringstream& os) {
   os << std::setprecision(6);
   if (kind == "section" && f.exists("/stiffness/timoshenko")) {
-    const Eigen::MatrixXd K = f.readMatrix("/stiffness/timoshenko");
+    const Eigen::MatrixXd K = f.readMatrix("/stiffness/timoshenko", 6, 6);
     os << "summary: EA = " << K(0, 0) << " N, GA2 = " << K(1, 1) << " N, GA3 = " << K(2, 2)
        << " N, GJ = " << K(3, 3) << " N m^2, EI2 = " << K(4, 4) << " N m^2, EI3 = " << K(5, 5)
        << " N m^2";
@@ -57,7 +59,10 @@ void summarise(const H5File& f, const std::string& kind, std::ostringstream& os)
     os << "\n";
   } else if (kind == "flexbody") {
     if (f.exists("/inertia/mass")) os << "summary: mass " << f.readScalar("/inertia/mass") << " kg";
-    if (f.exists("/mesh/nodes")) os << ", " << f.shape("/mesh/nodes")[0] << " nodes";
+    if (f.exists("/mesh/nodes")) {
+      const auto dims = f.shape("/mesh/nodes");
+      if (!dims.empty()) os << ", " << dims[0] << " nodes";
+    }
     if (f.exists("/modes/frequencies_hz")) {
       const Eigen::VectorXd fr = f.readVector("/modes/frequencies_hz");
       os << ", " << fr.size() << " modes\n  frequencies [Hz]:";
@@ -99,7 +104,12 @@ std::string inspectFile(const std::string& path) {
     os << "  " << attr << ": " << v << "\n";
     if (std::string(attr) == "format") kind = v.substr(0, v.find('/'));
   }
-  summarise(f, kind, os);
+  // A damaged file still gets its datasets listed: the summary is best effort.
+  try {
+    summarise(f, kind, os);
+  } catch (const H5Error& e) {
+    os << "summary: not available (" << e.what() << ")\n";
+  }
   os << "datasets:\n";
   listDatasets(f, "/", 0, os);
   return os.str();

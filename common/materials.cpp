@@ -20,11 +20,13 @@ void requirePositive(const std::string& name, const char* what, double v) {
                                 num(v));
 }
 
-// Physical ranges (SI units). Moduli: soft gels ~1e3 Pa to diamond 1.2e12 Pa.
-// Densities: aerogels ~1 kg/m^3 to osmium 2.26e4 kg/m^3. Outside them a value is
-// a unit mistake (GPa typed as Pa) or a typo, and the arithmetic of the section
-// and element kernels (products of moduli and lengths^4) underflows to 0 or NaN.
-constexpr double kModulusMin = 1e3, kModulusMax = 1e13;
+// Physical ranges (SI units). Moduli: soft gels ~1e3 Pa to diamond 1.2e12 Pa,
+// with room up to 1e15 Pa for the "100x steel" surrogates used to model
+// near-rigid parts. Densities: aerogels ~1 kg/m^3 to osmium 2.26e4 kg/m^3.
+// Outside them a value is a unit mistake (GPa typed as Pa) or a typo, and the
+// arithmetic of the section and element kernels (products of moduli and
+// lengths^4) underflows to 0 or NaN.
+constexpr double kModulusMin = 1e3, kModulusMax = 1e15;
 constexpr double kDensityMin = 0.1, kDensityMax = 1e5;
 
 void requireModulus(const std::string& name, const char* what, double v) {

@@ -120,6 +120,9 @@ void installTerminationHandlers(const std::string& tool, TerminationPolicy polic
   sigemptyset(&sa.sa_mask);
   for (int s : kSignals) sigaddset(&sa.sa_mask, s);
   sa.sa_flags = SA_RESTART;
+  // A file-size limit (ulimit -f, batch systems) must fail the write (EFBIG, then a
+  // clean error and the temporary removed), not kill the tool with a core dump.
+  ::signal(SIGXFSZ, SIG_IGN);
   for (int s : kSignals) {
     struct sigaction old {};
     sigaction(s, nullptr, &old);

@@ -5,7 +5,9 @@
 // API (all in namespace fc):
 //
 //   installTerminationHandlers(tool, policy)
-//       Installs one handler for the seven signals (call once, early in main).
+//       Installs one handler for the seven signals (call once, early in main),
+//       ignores SIGXFSZ (a file-size limit then fails the write with EFBIG, which
+//       the atomic writers report) and installs the std::terminate handler below.
 //       Policy::ExitNow   (section-prep, fe-prep): the handler removes every
 //           registered temporary file, writes "TOOL: interrupted by SIGxxx; no
 //           output written" to stderr and _exit(128 + signal). Nothing partial

@@ -57,7 +57,11 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
 
   const InputNode mesh = s["mesh"];
   shell.mesh_node = mesh;
-  mesh.allowKeys({"triangles", "size", "file"});
+  mesh.allowKeys({"triangles", "size", "file", "max_triangles"});
+  if (mesh.has("max_triangles")) {
+    shell.max_triangles = mesh["max_triangles"].asInt();
+    if (shell.max_triangles < 2) mesh["max_triangles"].fail("expected a triangle count of at least 2");
+  }
   if (mesh.has("triangles") && mesh.has("size"))
     mesh.fail("give either triangles: N or size: H, not both");
   if (mesh.has("triangles")) {
@@ -106,8 +110,13 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
     try {
       H5File f(path, H5File::Mode::Read);
       f.checkFormat("section", 1);
-      beam.Ks = f.readMatrix("/stiffness/timoshenko");
-      beam.Ms = f.readMatrix("/mass/matrix");
+      beam.Ks = f.readMatrix("/stiffness/timoshenko", 6, 6);
+      beam.Ms = f.readMatrix("/mass/matrix", 6, 6);
+      // A beam needs a positive-definite section stiffness and a positive mass.
+      Eigen::LLT<Matrix6d> llt(0.5 * (beam.Ks + beam.Ks.transpose()));
+      if (llt.info() != Eigen::Success)
+        throw H5Error(path + ": /stiffness/timoshenko is not positive definite");
+      if (!(beam.Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
     } catch (const std::exception& e) {
       sec["file"].fail(std::string("cannot use section file: ") + e.what() +
                        "; expected a section-prep output (format section/1)");

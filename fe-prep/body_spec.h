@@ -23,6 +23,7 @@ struct ShellSpec {
   fe::ShellKind kind = fe::ShellKind::DST;
   long triangles = 0;  // mesh: {triangles: N}
   double size = 0.0;   // mesh: {size: h}
+  long max_triangles = 500000;  // mesh: {max_triangles: N}, refused above (panel_mesher.h)
   InputNode mesh_node;
 };
 

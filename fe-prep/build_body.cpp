@@ -118,12 +118,13 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
         r.width = spec.shell->width;
         r.triangles = spec.shell->triangles;
         r.size = spec.shell->size;
+        r.max_triangles = spec.shell->max_triangles;
         for (const auto& i : spec.interfaces) r.forced_points.emplace_back(i.position.x(), i.position.y());
         mesh = meshRectangle(r);
       } else {
         std::vector<Eigen::Vector3d> pts;
         for (const auto& i : spec.interfaces) pts.push_back(i.position);
-        mesh = meshGeoFile(spec.shell->geo_file, spec.shell->size, pts, true);
+        mesh = meshGeoFile(spec.shell->geo_file, spec.shell->size, pts, true, spec.shell->max_triangles);
       }
     } catch (const std::exception& e) {
       error = e.what();

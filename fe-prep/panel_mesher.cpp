@@ -2,8 +2,13 @@
 
 #include <gmsh.h>
 
+#include "common/geo_script.h"
+#include "common/input.h"
+#include "common/termination.h"
+
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -76,7 +81,42 @@ Mesh extractTriangles() {
   return mesh;
 }
 
+Mesh meshRectangleGmsh(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
+                       const std::vector<Eigen::Vector2d>& interior, double h);
+
+// gmsh reports errors by throwing std::string, and aborts the process when it
+// throws inside its OpenMP meshing loop: the first become std::runtime_error, the
+// second a one-line error through the terminate handler (common/termination.h).
+template <class F>
+auto withGmsh(const std::string& what, F f) -> decltype(f()) {
+  const FatalErrorContext context(what + ": gmsh: ");
+  try {
+    return f();
+  } catch (const InputError&) {
+    throw;
+  } catch (...) {
+    throw std::runtime_error(what + ": gmsh: " + currentExceptionMessage());
+  }
+}
+
+// A mesh this large would exhaust memory in the eigen solve long before it ended.
+void checkTriangleCount(double estimate, long limit, const std::string& how) {
+  if (estimate > static_cast<double>(limit)) {
+    std::ostringstream os;
+    os << how << " gives about " << std::setprecision(2) << estimate
+       << " triangles, more than the limit of " << limit
+       << " (memory and time of the modal solve); use fewer triangles or a larger size, or raise "
+          "mesh.max_triangles if the machine can take it";
+    throw std::invalid_argument(os.str());
+  }
+}
+
 Mesh meshRectangleOnce(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
+                       const std::vector<Eigen::Vector2d>& interior, double h) {
+  return withGmsh("rectangular panel", [&] { return meshRectangleGmsh(r, edge_pts, interior, h); });
+}
+
+Mesh meshRectangleGmsh(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
                        const std::vector<Eigen::Vector2d>& interior, double h) {
   GmshSession session(r.quiet);
   gmsh::model::add("panel");
@@ -162,6 +202,12 @@ Mesh meshRectangle(const PanelMeshRequest& r) {
     if (!dup) list.push_back(p);
   }
 
+  const double area = r.length * r.width;
+  if (r.size > 0)
+    checkTriangleCount(area / (std::sqrt(3.0) / 4 * r.size * r.size), r.max_triangles,
+                       "size " + std::to_string(r.size) + " m");
+  else
+    checkTriangleCount(static_cast<double>(r.triangles), r.max_triangles, "triangles: " + std::to_string(r.triangles));
   Mesh best;
   if (r.size > 0) {
     best = meshRectangleOnce(r, edge_pts, interior, r.size);
@@ -186,14 +232,24 @@ Mesh meshRectangle(const PanelMeshRequest& r) {
   return best;
 }
 
+namespace {
+Mesh meshGeoFileGmsh(const std::string& path, double size, const std::vector<Eigen::Vector3d>& forced_points,
+                     bool quiet, long max_triangles);
+}  // namespace
+
 Mesh meshGeoFile(const std::string& path, double size, const std::vector<Eigen::Vector3d>& forced_points,
-                 bool quiet) {
+                 bool quiet, long max_triangles) {
+  // A .geo file is a program: refuse shell, file and exit commands before gmsh runs it.
+  checkGmshInput(path);
+  return withGmsh(path, [&] { return meshGeoFileGmsh(path, size, forced_points, quiet, max_triangles); });
+}
+
+namespace {
+
+Mesh meshGeoFileGmsh(const std::string& path, double size, const std::vector<Eigen::Vector3d>& forced_points,
+                     bool quiet, long max_triangles) {
   GmshSession session(quiet);
-  try {
-    gmsh::open(path);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("gmsh cannot read '" + path + "': " + e.what());
-  }
+  gmsh::open(path);
   // Embed forced points strictly inside planar surfaces: gmsh only accepts
   // embedded points inside the surface they belong to.
   gmsh::vectorpair surfaces;
@@ -216,9 +272,29 @@ Mesh meshGeoFile(const std::string& path, double size, const std::vector<Eigen::
     }
   }
   if (size > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", size);
+  // The file's own sizes are unknown before meshing: bound them from below so the
+  // count stays near max_triangles over the surfaces' total area.
+  double area = 0;
+  for (const auto& [dim, tag] : surfaces) {
+    // The largest face of the bounding box: an upper bound for a plane surface.
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+    const double dx = x1 - x0, dy = y1 - y0, dz = z1 - z0;
+    area += std::max({dx * dy, dy * dz, dx * dz});
+  }
+  if (area > 0 && std::isfinite(area)) {
+    if (size > 0)
+      checkTriangleCount(area / (std::sqrt(3.0) / 4 * size * size), max_triangles,
+                         "size " + std::to_string(size) + " m");
+    gmsh::option::setNumber("Mesh.MeshSizeMin", std::sqrt(area / (std::sqrt(3.0) / 4 * static_cast<double>(max_triangles))));
+  }
   gmsh::model::mesh::generate(2);
   Mesh mesh = extractTriangles();
+  if (static_cast<long>(mesh.triangles.size()) > 2 * max_triangles)
+    checkTriangleCount(static_cast<double>(mesh.triangles.size()), max_triangles, path);
   return mesh;
 }
+
+}  // namespace
 
 }  // namespace fc::feprep

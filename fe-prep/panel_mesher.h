@@ -9,6 +9,9 @@
 
 namespace fc::feprep {
 
+// About 0.5 M triangles: ~1.5 M shell DOF, several GB in the modal solve.
+constexpr long kDefaultMaxTriangles = 500000;
+
 struct PanelMeshRequest {
   double length = 0.0;  // along x
   double width = 0.0;   // along y
@@ -18,6 +21,8 @@ struct PanelMeshRequest {
   // Points (x, y) that must be mesh nodes: the interfaces' projections on z = 0.
   std::vector<Eigen::Vector2d> forced_points;
   bool quiet = true;
+  // Refused above this (std::invalid_argument), before meshing: mesh.max_triangles.
+  long max_triangles = kDefaultMaxTriangles;
 };
 
 // Unstructured Frontal-Delaunay triangles on [-L/2, L/2] x [-W/2, W/2], z = 0.
@@ -31,8 +36,9 @@ Mesh meshRectangle(const PanelMeshRequest& request);
 // Physical groups of dimension 0 and 1 become node sets under their names.
 // Forced points are embedded into the surface that contains them when it is a
 // plane surface of the geo kernel; otherwise the nearest node is used.
+// A .geo is checked first (common/geo_script.h: no shell, file or exit commands).
 Mesh meshGeoFile(const std::string& path, double size, const std::vector<Eigen::Vector3d>& forced_points,
-                 bool quiet = true);
+                 bool quiet = true, long max_triangles = kDefaultMaxTriangles);
 
 // Size h giving about n triangles on area A (equilateral triangles: A = n sqrt(3)/4 h^2).
 double sizeForTriangleCount(double area, long n);

@@ -261,3 +261,55 @@ TEST(FlexBodyFormat, RigidBodyFileWithoutModes) {
 }
 
 }  // namespace
+
+// --- hardening (issues 11 and 17) -------------------------------------------------
+
+TEST(FlexBodyHardening, SingularInertiaIsRefusedNamingTheBodyAndTheCause) {
+  // Point masses on a line, no rotary inertia: nothing resists a spin about it.
+  fc::FlexBody line = lumpedPlate(1.0, 0.0, 0.0, 1000.0, Vector3d::Zero(), 6, 1);
+  line.name = "rod";
+  line.nodes.col(1).setZero();
+  line.nodal_mass.rightCols(3).setZero();
+  for (long k = 0; k < line.nodeCount(); ++k) line.nodal_mass(k, 0) = 0.1;
+  fc::setRigidPropertiesFromLumpedMasses(line);
+  const std::string why = fc::flexBodyPhysicalProblem(line);
+  EXPECT_NE(why.find("singular"), std::string::npos) << why;
+  EXPECT_NE(why.find("rotary"), std::string::npos) << why;
+  try {
+    fc::writeFlexBody(tempPath("rod.h5"), line, fc::computeInertiaInvariants(line), {});
+    ADD_FAILURE() << "a singular inertia was written";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'rod'"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(tempPath("rod.h5")));
+  // The plate itself is fine.
+  fc::FlexBody plate = lumpedPlate(2.0, 1.3, 0.002, 1610.0, Vector3d::Zero(), 4, 3);
+  fc::setRigidPropertiesFromLumpedMasses(plate);
+  EXPECT_EQ(fc::flexBodyPhysicalProblem(plate), "");
+}
+
+TEST(FlexBodyHardening, NonFiniteOrWrongShapedDatasetsAreNamedOnRead) {
+  fc::FlexBody plate = lumpedPlate(2.0, 1.3, 0.002, 1610.0, Vector3d::Zero(), 4, 3);
+  fc::setRigidPropertiesFromLumpedMasses(plate);
+  const std::string path = tempPath("nan.h5");
+  fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
+  ASSERT_NO_THROW(fc::readFlexBody(path));
+  {
+    // Corrupt one value in place, as a damaged or hand-edited file would be.
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "/inertia/tensor", H5P_DEFAULT);
+    double t[9];
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t);
+    t[4] = INFINITY;
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  try {
+    fc::readFlexBody(path);
+    ADD_FAILURE() << "an infinite inertia was read";
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/inertia/tensor"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+  }
+}

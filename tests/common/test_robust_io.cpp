@@ -251,3 +251,97 @@ TEST(OutputPath, UnwritableLocationsAreReportedBeforeComputing) {
   EXPECT_NO_THROW(fc::checkOutputWritable((d / "ok.h5").string()));
   EXPECT_TRUE(listDir(d).empty());  // the probe is removed
 }
+
+// --- HDF5 readers trust nothing -----------------------------------------------------
+
+namespace {
+// A variable-length UTF-8 string attribute, exactly as h5py writes `f.attrs[k] = "..."`.
+void writeVlenAttribute(hid_t obj, const char* name, const char* value) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attr, type, &value);
+  H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+}  // namespace
+
+TEST(H5Readers, VariableLengthUtf8StringsAsH5pyWritesThem) {
+  const fs::path d = freshDir("vlen");
+  const std::string path = (d / "py.h5").string();
+  {
+    const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    writeVlenAttribute(f, "format", "section/1");
+    writeVlenAttribute(f, "note", "\u00e9t\u00e9 UTF-8");
+    // A vlen string dataset too (h5py: f["name"] = "beam").
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t ds = H5Dcreate2(f, "name", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const char* v = "beam";
+    H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v);
+    H5Dclose(ds);
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Fclose(f);
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.stringAttribute("/", "format"), "section/1");
+  EXPECT_EQ(f.stringAttribute("/", "note"), "\u00e9t\u00e9 UTF-8");
+  EXPECT_EQ(f.checkFormat("section", 1), 1);
+  EXPECT_EQ(f.readString("/name"), "beam");
+}
+
+TEST(H5Readers, ShapesAndTypesAreCheckedBeforeReading) {
+  const fs::path d = freshDir("shapes");
+  const std::string path = (d / "bad.h5").string();
+  {
+    fc::AtomicH5Writer w(path);
+    w.file().writeMatrix("/stiffness/timoshenko", Eigen::MatrixXd::Ones(5, 6));
+    w.file().writeString("/mesh/nodes", "not a number");
+    w.commit();
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  try {
+    f.readMatrix("/stiffness/timoshenko", 6, 6);
+    ADD_FAILURE();
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("must be a 6 x 6 matrix, got 5 x 6"), std::string::npos) << e.what();
+  }
+  try {
+    f.readMatrix("/mesh/nodes");
+    ADD_FAILURE();
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds text, expected numbers"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(f.readString("/stiffness/timoshenko"), fc::H5Error);
+  EXPECT_THROW(f.stringAttribute("/", "missing"), fc::H5Error);
+}
+
+#include "common/inspect.h"
+
+TEST(H5Readers, InspectSurvivesStringsWhereNumbersBelong) {
+  const fs::path d = freshDir("inspect");
+  const std::string path = (d / "body.h5").string();
+  {
+    fc::AtomicH5Writer w(path);
+    fc::writeProvenance(w.file(), "flexbody/1", "test", "x");
+    w.file().writeString("/mesh/nodes", "not a number");
+    w.file().writeString("/modes/frequencies_hz", "x");
+    w.commit();
+  }
+  const std::string out = fc::inspectFile(path);
+  EXPECT_NE(out.find("nodes  () = \"not a number\""), std::string::npos) << out;
+  const std::string sec = (d / "sec.h5").string();
+  {
+    fc::AtomicH5Writer w(sec);
+    fc::writeProvenance(w.file(), "section/1", "test", "x");
+    w.file().writeMatrix("/stiffness/timoshenko", Eigen::MatrixXd::Ones(5, 6));
+    w.commit();
+  }
+  EXPECT_NE(fc::inspectFile(sec).find("summary: not available"), std::string::npos);
+}
