@@ -89,9 +89,19 @@ void validateTree(const YAML::Node& root, const std::string& file) {
     std::size_t depth;
   };
   std::vector<Item> stack{{root, "", 0}};
+  // Aliases share nodes: "billion laughs" (&a [*b, *b, ...] nested) expands to an
+  // exponential tree. No flexcomp input comes near this many nodes.
+  constexpr std::size_t kMaxNodes = 200000;
+  std::size_t visited = 0;
   while (!stack.empty()) {
     Item it = std::move(stack.back());
     stack.pop_back();
+    if (++visited > kMaxNodes) {
+      const YAML::Mark m = it.node.Mark();
+      throw InputError(file, m.line + 1, m.column + 1, it.path,
+                       "the document expands to more than " + std::to_string(kMaxNodes) +
+                           " values (nested aliases?); flexcomp inputs are far smaller");
+    }
     const YAML::Mark m = it.node.Mark();
     if (it.depth > kMaxDepth)
       throw InputError(file, m.line + 1, m.column + 1, it.path,

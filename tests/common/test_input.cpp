@@ -160,3 +160,14 @@ TEST(InputHardening, IncludeErrorsDoNotEchoTheIncludedFile) {
     EXPECT_EQ(std::string(e.what()).find("SECRET"), std::string::npos) << e.what();
   }
 }
+
+TEST(InputHardening, AliasBombsAreRefusedQuickly) {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 9; ++i) {
+    text += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) text += std::string(k ? ", " : "") + "*a" + std::to_string(i - 1);
+    text += "]\n";
+  }
+  auto e = errorOf([&] { InputNode::loadString(text, "bomb.yaml"); });
+  EXPECT_NE(std::string(e.what()).find("nested aliases"), std::string::npos) << e.what();
+}
