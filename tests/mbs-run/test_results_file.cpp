@@ -51,6 +51,14 @@ TEST(ResultsFile, ContractLayout) {
   }
   EXPECT_EQ(f.shape("/joints/R/angle")[0], hsize_t(n));
   EXPECT_EQ(f.shape("/joints/R/reaction_force"), (std::vector<hsize_t>{hsize_t(n), 3}));
+  EXPECT_EQ(f.shape("/joints/R/reaction_torque"), (std::vector<hsize_t>{hsize_t(n), 3}));
+  // The run's peaks are those of the rows in the file.
+  EXPECT_EQ(f.stringAttribute("/", "peak_reaction_force_joint"), "R");
+  EXPECT_DOUBLE_EQ(f.doubleAttribute("/", "peak_reaction_force"),
+                   f.readMatrix("/joints/R/reaction_force").rowwise().norm().maxCoeff());
+  EXPECT_DOUBLE_EQ(f.doubleAttribute("/", "max_constraint_violation"),
+                   f.readVector("/diagnostics/constraint_violation").maxCoeff());
+  EXPECT_EQ(f.stringAttribute("/", "warnings"), "");  // a rigid scene: nothing to alias
   for (const char* e : {"kinetic", "potential", "strain", "dissipated"})
     EXPECT_EQ(f.shape(std::string("/energy/") + e)[0], hsize_t(n));
   EXPECT_EQ(f.shape("/diagnostics/constraint_violation")[0], hsize_t(n));
