@@ -186,6 +186,9 @@ BodySpec parseBodySpec(const InputNode& root) {
       const InputNode entry = in[key];
       const InputNode p = entry.isMap() ? entry["point"] : entry;
       InterfaceSpec i{key, p.asVector(3), entry};
+      // Bodies are far smaller than a kilometre: 1.7e308 made the shapes infinite.
+      if (i.position.cwiseAbs().maxCoeff() > 1e3)
+        p.fail("expected coordinates within 1000 m of the body's origin (SI units)");
       if (entry.isMap()) {
         entry.allowKeys({"point", "coupling", "nodes"});
         const std::string c = entry["coupling"].asString();
