@@ -85,6 +85,12 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/interfaces/*/position", "m", "interface position, body frame, undeformed"},
       {"flexbody", "/interfaces/*/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
        "the interface point's own displacement and rotation per mode (n_modes, 6)"},
+      {"flexbody", "/interfaces/*/static_compliance", "m/N, rad/(N m)",
+       "exact static deflection of the point under a unit force x y z / moment x y z (6; reference-held bodies)"},
+      {"flexbody", "/interfaces/*/static_participation", "1",
+       "each mode's share of that static deflection (n_modes, 6)"},
+      {"flexbody", "/interfaces/*/static_error", "1",
+       "share of that static deflection the file's modes miss (6; 0 where the point is held)"},
       {"flexbody", "/invariants/*", "SI (see docs/body-file.md)",
        "inertia invariant of the floating-frame formulation, lumped-mass sums (docs/body-file.md)"},
       // mbs-run

@@ -310,6 +310,12 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
     f.writeVector(g + "/position", it.position);
     const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> s = it.shapes;
     writeArray(f, g + "/shapes", {um, 6}, s.data());
+    if (it.static_error.size() == 6 && it.static_participation.rows() == nm) {
+      f.writeVector(g + "/static_compliance", it.static_compliance);
+      f.writeVector(g + "/static_error", it.static_error);
+      const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> p = it.static_participation;
+      writeArray(f, g + "/static_participation", {um, 6}, p.data());
+    }
   }
 
   // Invariants, mode index leading so that the first nm modes are a leading hyperslab.

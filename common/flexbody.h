@@ -42,6 +42,13 @@ struct FlexInterface {
   long node = -1;                 // index into FlexBody::nodes it is rigidly attached to
   Eigen::Vector3d position;       // undeformed body-frame position (may be off the node)
   Eigen::MatrixXd shapes;         // (n_modes, 6): the point's u1 u2 u3 theta1 theta2 theta3 per mode
+  // Static truncation (fe-prep, bodies whose reference holds every rigid motion;
+  // empty otherwise): per unit force x y z / moment x y z at the point, the
+  // exact static deflection, each mode's share of it, and the share all the
+  // file's modes miss (docs/fe-prep.md, "Modes chosen by error").
+  Eigen::VectorXd static_compliance;   // (6)
+  Eigen::MatrixXd static_participation;// (n_modes, 6)
+  Eigen::VectorXd static_error;        // (6)
 };
 
 struct FlexBody {

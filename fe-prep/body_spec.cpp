@@ -263,9 +263,14 @@ BodySpec parseBodySpec(const InputNode& root) {
   }
 
   if (b.has("modes") && b.has("max_frequency_hz")) b.fail("give either modes: N or max_frequency_hz: F, not both");
-  if (b.has("modes")) {
+  if (b.has("modes") && b["modes"].isMap()) {
+    const InputNode m = b["modes"];
+    m.allowKeys({"static_error"});
+    spec.static_error = m["static_error"].asPositive();
+    if (spec.static_error >= 1) m["static_error"].fail("expected a share below 1 (e.g. 0.01 for 1 %)");
+  } else if (b.has("modes")) {
     spec.modes = b["modes"].asInt();
-    if (spec.modes < 1) b["modes"].fail("expected a positive number of modes");
+    if (spec.modes < 1) b["modes"].fail("expected a positive number of modes, or {static_error: E}");
   } else if (b.has("max_frequency_hz")) {
     spec.max_frequency_hz = b["max_frequency_hz"].asPositive();
   } else {
@@ -281,6 +286,10 @@ BodySpec parseBodySpec(const InputNode& root) {
   const std::string reduction = b.string("reduction", "free");
   if (reduction == "craig_bampton") spec.craig_bampton = true;
   else if (reduction != "free") b["reduction"].fail("unknown reduction '" + reduction + "', expected free or craig_bampton");
+  if (spec.craig_bampton && spec.static_error > 0)
+    b["modes"].fail("static_error chooses free (constrained) modes; a craig_bampton basis is statically complete at its boundary already");
+  if (spec.static_error > 0 && spec.reference.empty())
+    b["modes"].fail("static_error needs a reference that holds the body (reference: {clamp: [...]}): a free body has no static deflection");
   if (spec.craig_bampton && spec.reference.empty())
     b["reduction"].fail("craig_bampton needs its boundary in reference: (clamp: or pin: the interfaces where the body is joined)");
   return spec;

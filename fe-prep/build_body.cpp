@@ -18,6 +18,7 @@
 #include "fe-prep/craig_bampton.h"
 #include "fe-prep/interfaces.h"
 #include "fe-prep/reference_conditions.h"
+#include "fe-prep/static_response.h"
 #include "fe-prep/elements/beam_element.h"
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mass_lumping.h"
@@ -311,14 +312,62 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
 
   // --- eigen-solve
   sw.start();
+  // Static deflection of every interface under unit loads, where the reference
+  // holds the body (static_response.h): the yardstick of the modes' truncation.
+  const bool static_check = !spec.craig_bampton && rigid.cols() == 0 && !mesh_interfaces.empty();
+  std::vector<Eigen::VectorXd> compliance;
+  if (static_check) {
+    Eigen::MatrixXd loads(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
+    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
+      loads.middleCols(6 * static_cast<long>(k), 6) = interfaceLoads(mesh_interfaces[k], mesh);
+    const Eigen::MatrixXd u = solveStatic(comm, sys.K, map, loads);
+    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
+      compliance.push_back(referencePointShapes(mesh_interfaces[k], mesh, u.middleCols(6 * static_cast<long>(k), 6)).diagonal());
+  } else if (spec.static_error > 0) {
+    spec.reference.front().node.fail("modes: {static_error: ...} needs interfaces and a reference that holds every rigid motion of the body");
+  }
+  Eigen::Vector2d compliance_scale = Eigen::Vector2d::Zero();
+  for (const auto& c : compliance)
+    compliance_scale = compliance_scale.cwiseMax(Eigen::Vector2d(c.head<3>().maxCoeff(), c.tail<3>().maxCoeff()));
+  auto truncations = [&](const ModalResult& m) {
+    std::vector<StaticTruncation> t;
+    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
+      Eigen::MatrixXd full(6 * mesh.nodeCount(), m.eigenvalues.size());
+      for (long j = 0; j < m.eigenvalues.size(); ++j) full.col(j) = map.expand(m.vectors.col(j));
+      t.push_back(staticTruncation(compliance[k], referencePointShapes(mesh_interfaces[k], mesh, full), m.eigenvalues,
+                                   compliance_scale));
+    }
+    return t;
+  };
   ModalRequest req;
-  req.modes = spec.modes;
+  req.modes = spec.static_error > 0 ? 8 : spec.modes;
   req.max_frequency_hz = spec.max_frequency_hz;
   req.tolerance = options.tolerance;
   Progress peig("eigen-solve", 1.0, quiet);
-  const ModalResult modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
-    peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
-  });
+  ModalResult modal;
+  for (;;) {
+    modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
+      peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
+    });
+    if (spec.static_error <= 0) break;
+    // modes: {static_error: e}: the fewest leading modes that miss at most e at
+    // every interface in every loaded direction; double the count until met.
+    const std::vector<StaticTruncation> t = truncations(modal);
+    double worst = 0.0;
+    const long n = modesForStaticError(t, spec.static_error, &worst);
+    // At most 512 modes: a load the modes cannot carry statically (an in-plane
+    // force on a panel, whose membrane modes lie far up) is reported, not chased.
+    const long available = std::min<long>(map.reduced - rigid.cols(), 512);
+    if (worst <= spec.static_error || req.modes >= available) {
+      if (worst > spec.static_error && rank == 0)
+        std::fprintf(stderr, "fe-prep: warning: modes: {static_error: %g} not reached with %ld modes (%.3g missed); "
+                     "the summary and /interfaces/*/static_error say where\n", spec.static_error, n, worst);
+      modal.eigenvalues.conservativeResize(n);
+      modal.vectors.conservativeResize(Eigen::NoChange, n);
+      break;
+    }
+    req.modes = std::min<long>(2 * req.modes, available);
+  }
   peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(rigid.cols()) +
               " rigid removed)");
   res.stages.push_back({"eigensolve", sw.seconds(), sw.cpu(), peakRssMb()});
@@ -410,8 +459,16 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes";
   }
   body.frequencies_hz = body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
-  for (std::size_t k = 0; k < body.interfaces.size(); ++k)
+  for (std::size_t k = 0; k < body.interfaces.size(); ++k) {
     body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);
+    if (static_check) {
+      const StaticTruncation t =
+          staticTruncation(compliance[k], body.interfaces[k].shapes, body.eigenvalues, compliance_scale);
+      body.interfaces[k].static_compliance = t.compliance;
+      body.interfaces[k].static_participation = t.participation;
+      body.interfaces[k].static_error = t.error;
+    }
+  }
   IndexMatrix conn;
   if (n_tri > 0) {
     conn.resize(n_tri, 3);

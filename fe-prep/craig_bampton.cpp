@@ -1,5 +1,7 @@
 #include "fe-prep/craig_bampton.h"
 
+#include "fe-prep/static_response.h"
+
 #include <petscksp.h>
 
 #include <stdexcept>
@@ -63,18 +65,6 @@ Eigen::VectorXd multiply(Mat A, const Eigen::VectorXd& v) {
   setLocal(x.v, v);
   check(MatMult(A, x.v, y.v), "MatMult");
   return gatherAll(y.v);
-}
-
-// T^T f: a full nodal force vector to the reduced DOF of `map`.
-Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(map.reduced);
-  for (std::size_t n = 0; n < map.T.size(); ++n) {
-    const auto& ix = map.idx[n];
-    if (ix.empty()) continue;
-    const Eigen::VectorXd g = map.T[n].transpose() * f.segment<6>(6 * static_cast<long>(n));
-    for (std::size_t j = 0; j < ix.size(); ++j) r(ix[j]) += g(static_cast<long>(j));
-  }
-  return r;
 }
 
 }  // namespace

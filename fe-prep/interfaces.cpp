@@ -93,6 +93,17 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& s, const E
   return it;
 }
 
+Eigen::MatrixXd interfaceLoads(const MeshInterface& it, const Mesh& mesh) {
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(6 * mesh.nodeCount(), 6);
+  if (it.coupling == Coupling::Distributing) {
+    for (std::size_t i = 0; i < it.nodes.size(); ++i)
+      F.middleRows(6 * it.nodes[i], 6) = it.W.middleCols(6 * static_cast<long>(i), 6).transpose();
+  } else {
+    F.middleRows(6 * it.node, 6) = rigidTransfer(it.point - mesh.nodes.row(it.node).transpose()).transpose();
+  }
+  return F;
+}
+
 Eigen::MatrixXd referencePointShapes(const MeshInterface& it, const Mesh& mesh, const Eigen::MatrixXd& q) {
   const long nm = q.cols();
   Eigen::MatrixXd s(nm, 6);

@@ -46,6 +46,9 @@ Eigen::VectorXd tributaryWeights(const Mesh& mesh, const std::vector<long>& node
 Eigen::MatrixXd distributingMap(const Mesh& mesh, const std::vector<long>& nodes, const Eigen::VectorXd& weights,
                                 const Eigen::Vector3d& point);
 
+// L^T (6 n, 6): the nodal loads of a unit force (columns 0-2) or moment (3-5) at the point.
+Eigen::MatrixXd interfaceLoads(const MeshInterface& it, const Mesh& mesh);
+
 // The reference point's motion per mode (n_modes, 6) from the nodal shapes (6 n, n_modes).
 Eigen::MatrixXd referencePointShapes(const MeshInterface& it, const Mesh& mesh, const Eigen::MatrixXd& node_shapes);
 

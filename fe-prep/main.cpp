@@ -29,6 +29,14 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
               b.center_of_mass.y(), b.center_of_mass.z());
   std::printf("  %-6s %14s\n", "mode", "frequency [Hz]");
   for (long i = 0; i < b.frequencies_hz.size(); ++i) std::printf("  %-6ld %14.6f\n", i + 1, b.frequencies_hz(i));
+  for (const auto& it : b.interfaces) {
+    if (it.static_error.size() != 6) continue;
+    std::printf("  interface %-10s static truncation error (share of the static deflection the %d modes miss):\n"
+                "    force x y z %.2e %.2e %.2e, moment x y z %.2e %.2e %.2e (0: held)\n",
+                it.name.c_str(), b.modeCount(), it.static_error(0), it.static_error(1), it.static_error(2),
+                it.static_error(3), it.static_error(4), it.static_error(5));
+  }
+  if (!b.reduction.empty()) std::printf("  basis: %s\n", b.reduction.c_str());
   for (const auto& s : r.stages)
     std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)\n", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
   (void)spec;

@@ -1,0 +1,52 @@
+#pragma once
+// Static responses of the reduced (reference-held) body, and the static
+// truncation error of a set of modes at the interfaces (issue 16, "modes
+// chosen by error").
+//
+// A unit load e_k (k: force x, y, z, moment x, y, z) at an interface reaches
+// the nodes as f = L^T e_k, L (6 x 6n) the interface's map (the rigid offset
+// from its node, or the distributing fit W). The exact static deflection in the
+// loaded direction is delta_k = e_k^T L K^-1 L^T e_k (K with the reference
+// conditions, T^T K T); the modes' is sum_j s_jk^2 / lambda_j, s_jk = (L phi_j)_k
+// the interface's shape (mass-normalised phi_j). Per mode, its participation
+// p_jk = s_jk^2 / (lambda_j delta_k); the truncation error of the first n modes
+// e_k(n) = 1 - sum_{j<n} p_jk, the share of the static deflection they miss
+// (0 <= e <= 1 as the modes are K-orthogonal and complete).
+#include <mpi.h>
+#include <petscmat.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <vector>
+
+#include "fe-prep/reference_conditions.h"
+
+namespace fc::feprep {
+
+// T^T f: a full nodal force vector to the reduced DOF of `map`.
+Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f);
+
+// Full nodal displacements (6 n, m) of the reduced system K (map) under full
+// nodal forces (6 n, m); MUMPS Cholesky, every rank gets the whole result.
+// Throws std::runtime_error if K is singular (rigid motions left free).
+Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces);
+
+struct StaticTruncation {
+  Eigen::MatrixXd participation;  // (n_modes, 6) p_jk; zero in held directions
+  Eigen::VectorXd error;          // (6) e_k of all the modes given; zero in held directions
+  std::array<bool, 6> held{};     // direction k held by the reference
+  Eigen::VectorXd compliance;     // (6) delta_k, the exact static deflection per unit load
+};
+
+// map_rows: L (6, 6 n) of the interface; shapes (n_modes, 6) its modal shapes.
+// scale: the largest compliance of the body in each kind (forces, moments):
+// directions below 1e-9 of it are held.
+StaticTruncation staticTruncation(const Eigen::VectorXd& compliance, const Eigen::MatrixXd& shapes,
+                                  const Eigen::VectorXd& eigenvalues, const Eigen::Vector2d& scale);
+
+// Smallest number of leading modes whose error e_k is <= target for the unit
+// forces (the deflections; moments are reported, not chosen on) at every
+// interface (n_modes if none is); *worst: the error left with that number.
+long modesForStaticError(const std::vector<StaticTruncation>& t, double target, double* worst = nullptr);
+
+}  // namespace fc::feprep
