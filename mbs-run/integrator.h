@@ -28,6 +28,16 @@ struct Tolerances {
 double weightedRmsNorm(const Eigen::VectorXd& e, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1,
                        const Tolerances& tol);
 
+// Forward-difference Jacobian df/dy at (t, y), f0 = f(t, y). Column j uses
+// the increment sqrt(eps) max(|y_j|, atol / rtol): relative where y_j is
+// large, and otherwise at the scale below which the error norm does not look
+// (atol / rtol ~ the size of a component whose absolute and relative
+// tolerances weigh alike). An increment at y_j's own tiny size (1e-13 for a
+// modal coordinate of 1e-5) lets the rounding of f, which the multiplier
+// iteration leaves at ~1e-10 relative, swamp the column.
+Eigen::MatrixXd finiteDifferenceJacobian(const Rhs& f, double t, const Eigen::VectorXd& y,
+                                         const Eigen::VectorXd& f0, const Tolerances& tol);
+
 class Integrator {
  public:
   virtual ~Integrator() = default;

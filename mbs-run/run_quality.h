@@ -1,0 +1,37 @@
+#pragma once
+// Whether a finished run's own invariants say its answer is as accurate as
+// its tolerances ask (issue 17: no run may report `completed` with a wrong
+// answer). Two checks a wrong integration cannot pass unnoticed:
+// - the energy balance T + V + D - W over each event-free segment, which the
+//   exact solution keeps constant;
+// - the constraint violation at the output times, which the projections keep
+//   below atol / 10.
+// Limits: what the error control promises. Every accepted step's local error
+// is at most rtol |y| + atol (weighted norm), so
+// - energy: at most steps x rtol x the largest energy term of the run, the
+//   local errors all adding up (a run that loses accuracy to something the
+//   error estimate does not see - an unconverged Newton stage, a stale
+//   Jacobian, an instability - exceeds it by orders of magnitude);
+// - violation: outputs are interpolated between projected steps, so their
+//   drift is the interpolant's error, at most 10 (atol + rtol L), L the
+//   largest body position of the run (1 m at least).
+// Calibration on every scene of the mbs-run test suites: docs/mbs-run.md,
+// "Run quality".
+#include <string>
+
+namespace fc::mbs {
+
+struct Results;
+
+struct QualityLimits {
+  double energy = 0.0;     // [J]
+  double violation = 0.0;  // [m, rad]
+};
+
+QualityLimits qualityLimits(const Results& r, double rtol, double atol);
+
+// The status a run that reached its end should report: "completed", or
+// "inaccurate: ..." naming the check that failed, its value and its limit.
+std::string qualityStatus(const Results& r, double rtol, double atol);
+
+}  // namespace fc::mbs
