@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace fc::mbs {
 
@@ -87,5 +88,28 @@ std::unique_ptr<Integrator> makeDormandPrince(Rhs f, const Tolerances& tol);
 // than 30 % since the last factorisation (or the Jacobian was renewed):
 // simplified Newton still converges with a nearby h in the matrix.
 std::unique_ptr<Integrator> makeTrBdf2(Rhs f, const Tolerances& tol);
+
+// A linear part L of f in the structure of modal stiffness and damping
+// (System::modalSplit): for each modal coordinate j, at state index q_j with
+// its rate at v_j, (L z)[q_j] = z[v_j] and the velocity rows
+// [v_offset, v_offset + response.rows()) receive
+//   -sum_j response(:, j) (stiffness_j z[q_j] + damping_j z[v_j]).
+struct StiffModalPart {
+  std::vector<int> q_index, v_index;
+  int v_offset = 0;
+  Eigen::VectorXd stiffness, damping;
+  Eigen::MatrixXd response;
+  int modes() const { return int(q_index.size()); }
+};
+using StiffPart = std::function<StiffModalPart(double, const Eigen::VectorXd&)>;
+
+// IMEX additive Runge-Kutta ARK3(2)4L[2]SA (Kennedy & Carpenter, Appl.
+// Numer. Math. 44 (2003) 139-181): f = (f - L) + L with L the modal
+// stiffness and damping (StiffModalPart), L treated by the L-stable ESDIRK,
+// the rest by the explicit tableau; order 3, embedded order 2. L is frozen
+// over a step (and reused over many), so every stage is one structured
+// linear solve (an nm x nm system, nm the modes) and the split stays exact:
+// accuracy never depends on how well L matches the Jacobian, only stability.
+std::unique_ptr<Integrator> makeImexArk3(Rhs f, StiffPart stiff, const Tolerances& tol);
 
 }  // namespace fc::mbs

@@ -3,13 +3,17 @@
 #include <cstdio>
 
 #include "mbs-run/run_summary.h"
+#include "mbs-run/switch_trial.h"
 
 namespace fc::mbs {
 
-IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, const Tolerances& tol)
-    : settings_(settings), f_(std::move(f)), tol_(tol) {
+IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, StiffPart stiff, const Tolerances& tol)
+    : settings_(settings), f_(std::move(f)), stiff_(std::move(stiff)), tol_(tol) {
   if (settings.integrator == IntegratorKind::TrBdf2) {
     implicit_ = makeTrBdf2(f_, tol_);
+    current_ = implicit_.get();
+  } else if (settings.integrator == IntegratorKind::Imex) {
+    implicit_ = makeImexArk3(f_, stiff_, tol_);
     current_ = implicit_.get();
   } else {
     explicit_ = makeDormandPrince(f_, tol_);
@@ -19,6 +23,7 @@ IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, const 
 }
 
 void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
+  declined_ = false;  // new dynamics: a new trial may switch
   if (settings_.switch_when_stiff && explicit_ && current_ != explicit_.get()) {
     current_ = explicit_.get();
     log.push_back(timeLabel(t) + " dopri5 (event)");
@@ -29,14 +34,31 @@ void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, 
 bool IntegratorSwitching::switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
   if (!settings_.switch_when_stiff || current_ != explicit_.get()) return false;
   const double lambda = current_->stiffness();
-  if (!(lambda > settings_.stiff_frequency)) return false;
-  if (!implicit_) implicit_ = makeTrBdf2(f_, tol_);
+  if (declined_ || !(lambda > settings_.stiff_frequency)) return false;
+  // Measured choice (switch_trial.h): both methods over the next
+  // kTrialSteps explicit steps; stay explicit for the rest of the segment
+  // unless the implicit candidate is cheaper and as accurate.
+  const double h = current_->t() - current_->tPrevious();
+  // The candidate: IMEX where there are modes (their stiffness is what it
+  // treats implicitly, with a structured solve), else TR-BDF2.
+  const bool has_modes = stiff_ && stiff_(t, y).modes() > 0;
+  const StiffPart stiff = stiff_;
+  const MethodFactory candidate = [&](Rhs counted) {
+    return has_modes ? makeImexArk3(counted, stiff, tol_) : makeTrBdf2(counted, tol_);
+  };
+  const SwitchTrial trial = trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h);
+  if (!trial.implicit_better) {
+    declined_ = true;
+    log.push_back(timeLabel(t) + " dopri5 kept: " + trial.describe());
+    return false;
+  }
+  if (!implicit_) implicit_ = has_modes ? makeImexArk3(f_, stiff_, tol_) : makeTrBdf2(f_, tol_);
   current_ = implicit_.get();
   current_->reset(t, y);
   char buf[96];
-  std::snprintf(buf, sizeof buf, " trbdf2 (dopri5 held at its stability boundary by |lambda| ~ %.3g rad/s)", lambda);
-  log.push_back(timeLabel(t) + buf);
-  label_ = "dopri5+trbdf2";
+  std::snprintf(buf, sizeof buf, " (dopri5 held at its stability boundary by |lambda| ~ %.3g rad/s; ", lambda);
+  log.push_back(timeLabel(t) + " " + current_->name() + buf + trial.describe() + ")");
+  label_ = "dopri5+" + current_->name();
   return true;
 }
 

@@ -18,15 +18,19 @@ namespace fc::mbs {
 
 class IntegratorSwitching {
  public:
-  IntegratorSwitching(const Settings& settings, Rhs f, const Tolerances& tol);
+  // stiff: the modal stiffness part for the IMEX method (System::modalSplit).
+  IntegratorSwitching(const Settings& settings, Rhs f, StiffPart stiff, const Tolerances& tol);
   Integrator& current() { return *current_; }
   // The method's name, "dopri5+trbdf2" once auto has switched.
   const std::string& label() const { return label_; }
   // After an event at (t, y): auto goes back to the explicit method, a named
   // method restarts (its history is invalid).
   void restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
-  // After an accepted step: moves to TR-BDF2 when auto's Dormand-Prince is
-  // held at its stability boundary above the stiff frequency. True if it did.
+  // After an accepted step: when auto's Dormand-Prince is held at its
+  // stability boundary above the stiff frequency, a trial of both methods
+  // (switch_trial.h) decides; it moves to TR-BDF2 only if that is cheaper and
+  // as accurate, and otherwise keeps dopri5 until the next event. True if it
+  // switched.
   bool switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
   long steps() const;
   long rejected() const;
@@ -34,10 +38,15 @@ class IntegratorSwitching {
  private:
   const Settings& settings_;
   Rhs f_;
+  StiffPart stiff_;
   Tolerances tol_;
   std::unique_ptr<Integrator> explicit_, implicit_;
   Integrator* current_ = nullptr;
   std::string label_;
+  bool declined_ = false;  // a trial kept dopri5 for the rest of this segment
 };
+
+// Length of auto's switch trial in Dormand-Prince steps (switch_trial.h).
+constexpr double kTrialSteps = 300.0;
 
 }  // namespace fc::mbs

@@ -140,7 +140,7 @@ struct Event {
   std::string label;
 };
 
-enum class IntegratorKind { Auto, DormandPrince, TrBdf2 };
+enum class IntegratorKind { Auto, DormandPrince, TrBdf2, Imex };
 
 struct Settings {
   double t_end = 1.0;

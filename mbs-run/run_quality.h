@@ -12,6 +12,8 @@
 //   local errors all adding up (a run that loses accuracy to something the
 //   error estimate does not see - an unconverged Newton stage, a stale
 //   Jacobian, an instability - exceeds it by orders of magnitude);
+//   and never more than kMaxRelativeEnergyError of it (a blown-up run's
+//   largest energy term is its blow-up);
 // - violation: outputs are interpolated between projected steps, so their
 //   drift is the interpolant's error, at most 10 (atol + rtol L), L the
 //   largest body position of the run (1 m at least).
@@ -21,17 +23,19 @@
 
 namespace fc::mbs {
 
-struct Results;
+struct RunSummary;
+
+constexpr double kMaxRelativeEnergyError = 0.1;
 
 struct QualityLimits {
   double energy = 0.0;     // [J]
   double violation = 0.0;  // [m, rad]
 };
 
-QualityLimits qualityLimits(const Results& r, double rtol, double atol);
+QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol);
 
 // The status a run that reached its end should report: "completed", or
 // "inaccurate: ..." naming the check that failed, its value and its limit.
-std::string qualityStatus(const Results& r, double rtol, double atol);
+std::string qualityStatus(const RunSummary& r, double rtol, double atol);
 
 }  // namespace fc::mbs

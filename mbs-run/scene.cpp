@@ -459,7 +459,8 @@ void parseSimulation(const InputNode& s, Settings& st) {
   if (integ == "auto") st.integrator = IntegratorKind::Auto;
   else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;
   else if (integ == "trbdf2") st.integrator = IntegratorKind::TrBdf2;
-  else s["integrator"].fail("expected auto, dopri5 or trbdf2, got '" + integ + "'");
+  else if (integ == "imex") st.integrator = IntegratorKind::Imex;
+  else s["integrator"].fail("expected auto, dopri5, trbdf2 or imex, got '" + integ + "'");
 }
 
 template <class F>

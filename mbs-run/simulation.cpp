@@ -13,6 +13,7 @@
 #include "mbs-run/finite_guard.h"
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/joint_limits.h"
+#include "mbs-run/run_quality.h"
 
 namespace fc::mbs {
 
@@ -191,7 +192,8 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   // decides when a rebound is too small to resolve is atol [rad].
   StopMonitor stops(model, tol.atol);
   FiniteGuard guard(sys);
-  IntegratorSwitching methods(st, guard.rhs(), tol);
+  IntegratorSwitching methods(st, guard.rhs(), [&sys](double t, const VectorXd& yy) { return sys.modalSplit(t, yy); },
+                              tol);
   R.integrator = methods.label();
   TimedEvents timed(model);
   CrossingEvents crossings(model);
@@ -311,6 +313,9 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   R.evaluations = sys.stats().evaluations;
   R.max_al_iterations = sys.stats().max_al_iterations;
   R.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  // A run that reached its end says whether its answer is within its
+  // tolerances (run_quality.h): "completed" only then.
+  if (R.status == "completed") R.status = qualityStatus(R, st.rtol, tol.atol);
   return R;
 }
 

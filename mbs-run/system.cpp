@@ -242,6 +242,45 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   ydot[nq + nv + 1] = applied + drive_power;
 }
 
+StiffModalPart System::modalSplit(double t, const VectorXd& y) {
+  StiffModalPart S;
+  const int nq = model_.nq, nv = model_.nv;
+  S.v_offset = nq;
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed || b.modes == 0) continue;
+    for (int j = 0; j < b.modes; ++j) {
+      S.q_index.push_back(b.pos_index + 7 + j);
+      S.v_index.push_back(nq + b.dof_index + 6 + j);
+    }
+  }
+  const int n = int(S.q_index.size());
+  S.stiffness.resize(n);
+  S.damping.resize(n);
+  S.response.resize(nv, n);
+  if (n == 0) return S;
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  assembleMass(P_);
+  factorize();
+  int col = 0;
+  const VectorXd no_stabilisation = VectorXd::Zero(phi_.size());
+  VectorXd Q = VectorXd::Zero(nv);
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed || b.modes == 0) continue;
+    const ModalProperties& mp = b.flex->modal;
+    for (int j = 0; j < b.modes; ++j, ++col) {
+      S.stiffness[col] = mp.stiffness[j];
+      S.damping[col] = mp.damping[j];
+      Q[b.dof_index + 6 + j] = 1.0;
+      S.response.col(col) = solver_.accelerations(Q, no_stabilisation, 1e-12, model_.settings.multiplier_iterations).vdot;
+      Q[b.dof_index + 6 + j] = 0.0;
+    }
+  }
+  return S;
+}
+
 double System::constraintViolation(double t, const VectorXd& y) { return violations(t, y).position; }
 
 System::Violations System::violations(double t, const VectorXd& y) {

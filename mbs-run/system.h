@@ -17,6 +17,7 @@
 
 #include "mbs-run/augmented_lagrangian.h"
 #include "mbs-run/constraints.h"
+#include "mbs-run/integrator.h"
 #include "mbs-run/force_elements.h"
 #include "mbs-run/model.h"
 
@@ -101,6 +102,13 @@ class System {
   const Eigen::VectorXd& constraintTimeDerivative() const { return phit_; }
 
   const EvalStats& stats() const { return stats_; }
+
+  // The stiff linear part of f (for the IMEX integrator, integrator.h): the
+  // modal stiffness and damping forces -(Lambda w + D wdot) of every flexible
+  // body, carried to the accelerations by the constrained inverse mass at y
+  // (response: the accelerations a unit generalised force on each modal row
+  // causes, with the joints' constraint forces).
+  StiffModalPart modalSplit(double t, const Eigen::VectorXd& y);
 
  private:
   // Assembles Phi_v (sparse), Phi, Phi_t, c for the active joints at (t, poses).

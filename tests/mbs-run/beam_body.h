@@ -34,6 +34,11 @@ struct BeamSpec {
   // (eigenvalue 0) is dropped and the next `modes` kept (the reference
   // condition of a hinge, as fe-prep's "pin").
   bool pinned_root = false;
+  // false: no rotary inertia at the nodes (a section whose bending rotary
+  // inertia is neglected, issue 17): the rotations carry no mass and are
+  // condensed statically (exact for such a lumped mass), leaving one mode per
+  // free translational dof.
+  bool rotary_inertia = true;
 };
 
 struct BeamModel {
@@ -70,7 +75,38 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
     b.M(2 * k - 2 + p, 2 * k - 2 + p) = b.node_mass(k);
     b.M(2 * k - 1 + p, 2 * k - 1 + p) = b.node_rotary(k);
   }
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(b.K, b.M);
+  if (!s.rotary_inertia) b.node_rotary.setZero();
+  // Without rotary inertia: condense the rotations, K* = Ktt - Ktr Krr^-1 Krt
+  // on the translations t, rotations from r = -Krr^-1 Krt t.
+  std::vector<int> tr, rot;
+  for (int d = 0; d < nd; ++d) ((d - p) % 2 == 0 && d >= p ? tr : rot).push_back(d);
+  Eigen::MatrixXd phi_all(nd, nd);
+  Eigen::VectorXd lambda_all(nd);
+  if (s.rotary_inertia) {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(b.K, b.M);
+    phi_all = es.eigenvectors();
+    lambda_all = es.eigenvalues();
+  } else {
+    const int nt = int(tr.size()), nr = int(rot.size());
+    Eigen::MatrixXd Ktt(nt, nt), Ktr(nt, nr), Krr(nr, nr), Mtt = Eigen::MatrixXd::Zero(nt, nt);
+    for (int a = 0; a < nt; ++a) {
+      for (int c = 0; c < nt; ++c) Ktt(a, c) = b.K(tr[a], tr[c]);
+      for (int c = 0; c < nr; ++c) Ktr(a, c) = b.K(tr[a], rot[c]);
+      Mtt(a, a) = b.M(tr[a], tr[a]);
+    }
+    for (int a = 0; a < nr; ++a)
+      for (int c = 0; c < nr; ++c) Krr(a, c) = b.K(rot[a], rot[c]);
+    const Eigen::MatrixXd R = -Krr.ldlt().solve(Ktr.transpose());  // rotations per translation
+    const Eigen::MatrixXd Ks = Ktt + Ktr * R;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mtt);
+    phi_all.setZero(nd, nt);
+    for (int a = 0; a < nt; ++a) phi_all.row(tr[a]) = es.eigenvectors().row(a);
+    const Eigen::MatrixXd rv = R * es.eigenvectors();
+    for (int a = 0; a < nr; ++a) phi_all.row(rot[a]) = rv.row(a);
+    lambda_all = es.eigenvalues();
+    b.M.setZero();
+    for (int a = 0; a < nt; ++a) b.M(tr[a], tr[a]) = Mtt(a, a);
+  }
   FlexBody& f = b.body;
   f.name = "beam";
   f.nodes = Eigen::MatrixXd::Zero(nn, 3);
@@ -83,10 +119,13 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
   }
   const int nm = s.modes;
   f.shapes = Eigen::MatrixXd::Zero(6 * nn, nm);
-  f.eigenvalues = es.eigenvalues().segment(p, nm);
+  // Pinned: the first eigenvalue is the rigid rotation about the pin (zero),
+  // dropped. Condensed pinned beams have it too (the rotation carries the
+  // translations along).
+  f.eigenvalues = lambda_all.segment(p, nm);
   f.frequencies_hz = f.eigenvalues.array().sqrt() / (2 * M_PI);
   for (int j = 0; j < nm; ++j) {
-    Eigen::VectorXd phi = es.eigenvectors().col(j + p);  // M-orthonormal
+    Eigen::VectorXd phi = phi_all.col(j + p);  // M-orthonormal
     if (phi(nd - 2) < 0) phi = -phi;                     // tip moves along +y
     if (p) f.shapes(5, j) = phi(0);
     for (int k = 1; k < nn; ++k) {

@@ -1,0 +1,139 @@
+// Issue 17's measurements, one table each, printed as markdown
+// (docs/benchmarks.md quotes them):
+//  A. a flexible beam pendulum (pinned-root modes of a Hermite beam, written
+//     by tests/mbs-run/beam_body.h) with 4..200 modes: CPU per simulated
+//     second of `imex` (and `dopri5` where it finishes in reasonable time);
+//  B. the stiff beam pendulum (4 modes, first mode 145 Hz) at rtol 1e-6:
+//     real-time factor of `dopri5` and `imex`;
+//  C. rigid chains of N = 10..1000 rods on revolute joints: CPU per
+//     right-hand side and per simulated second (dopri5, rtol 1e-6).
+// Usage: bench_integrators [A|B|C]... (all when none given).
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <string>
+
+#include "../../tests/mbs-run/beam_body.h"
+#include "mbs-run/simulation.h"
+#include "mbs-run/system.h"
+
+namespace {
+
+using fc::mbs::Results;
+
+std::string pendulumScene(const std::string& file, int modes, const std::string& sim) {
+  return "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n"
+         "  - name: beam\n    flexible: {file: " + file + ", modes: " + std::to_string(modes) +
+         ", damping_ratio: 0.0}\njoints:\n  - {name: pivot, type: revolute, bodies: [ground, beam], points: [[0, 0, "
+         "0], root], axes: [[0, 0, 1], [0, 0, 1]]}\nforces:\n  - {type: gravity, g: [0, -9.81, 0]}\nsimulation: " +
+         sim + "\n";
+}
+
+double tip(const fc::FlexBody& b, const Eigen::VectorXd& w) {
+  return b.interface("tip").shapes.col(1).head(w.size()).dot(w);
+}
+
+Results run(const std::string& file, int modes, const char* integ, double rtol, double t_end) {
+  char sim[200];
+  std::snprintf(sim, sizeof sim, "{t_end: %g, output_step: 0.01, rtol: %g, integrator: %s}", t_end, rtol, integ);
+  return fc::mbs::simulate(fc::mbs::test::sceneFromText(pendulumScene(file, modes, sim)), {true});
+}
+
+void modes() {
+  std::printf("\n### A. Beam pendulum, modes kept (0.5 s from the horizontal, pinned-root modes, undamped)\n\n");
+  std::printf("| modes | omega_max [rad/s] | integrator | rtol | CPU s / sim s | steps | rhs evals | tip [m] | tip diff vs rtol 1e-6 [m] | status |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int nm : {4, 16, 64, 100, 200}) {
+    fc::mbs::test::BeamSpec s;
+    s.elements = std::max(20, nm / 2 + 1);
+    s.modes = nm;
+    s.ei = 20.0;
+    s.pinned_root = true;
+    const auto bm = fc::mbs::test::cantileverBeam(s);
+    const std::string file = fc::mbs::test::writeBeam(bm, "bench_modes");
+    const double t_end = 0.5;
+    const Results ref = run(file, nm, "imex", 1e-6, t_end);
+    for (const char* integ : {"imex", "dopri5"}) {
+      if (std::string(integ) == "dopri5" && nm > 16) continue;  // 119 s per simulated s at 64 modes (issue 17)
+      for (double rtol : {1e-4, 1e-6}) {
+        const Results r = (std::string(integ) == "imex" && rtol == 1e-6) ? ref : run(file, nm, integ, rtol, t_end);
+        const double tp = tip(bm.body, r.modal[1].back());
+        std::printf("| %d | %.3g | %s | %.0e | %.3g | %ld | %ld | %.6e | %.2e | %s |\n", nm,
+                    std::sqrt(bm.body.eigenvalues(nm - 1)), integ, rtol, r.cpu_seconds / r.t_reached, r.steps,
+                    r.evaluations, tp, std::abs(tp - tip(bm.body, ref.modal[1].back())), r.status.substr(0, 12).c_str());
+        std::fflush(stdout);
+      }
+    }
+    std::filesystem::remove(file);
+  }
+}
+
+void stiff() {
+  std::printf("\n### B. Stiff beam pendulum (4 pinned-root modes, first mode 145 Hz), 1 s, rtol 1e-6\n\n");
+  fc::mbs::test::BeamSpec s;
+  s.elements = 20;
+  s.modes = 4;
+  s.ei = 80.0;
+  s.pinned_root = true;
+  // Pinned-free beam: omega_1 = 15.42 sqrt(EI / (rho A L^4)); 145 Hz asks
+  // for EI = 3 494 N m^2, 43.7 x the default.
+  s.stiffness_scale = 43.7;
+  const auto bm = fc::mbs::test::cantileverBeam(s);
+  const std::string file = fc::mbs::test::writeBeam(bm, "bench_stiff");
+  std::printf("first mode %.1f Hz, fourth %.1f Hz\n\n", bm.body.frequencies_hz(0), bm.body.frequencies_hz(3));
+  std::printf("| integrator | CPU s | real-time factor (sim s / CPU s) | steps | rhs evals | angle [rad] | status |\n|---|---|---|---|---|---|---|\n");
+  for (const char* integ : {"dopri5", "imex", "auto"}) {
+    const Results r = run(file, 4, integ, 1e-6, 1.0);
+    std::printf("| %s | %.3f | %.2f | %ld | %ld | %.9f | %s |\n", integ, r.cpu_seconds, r.t_reached / r.cpu_seconds,
+                r.steps, r.evaluations, 2.0 * std::atan2(r.orientation[1].back()(3), r.orientation[1].back()(0)),
+                r.status.substr(0, 12).c_str());
+    std::fflush(stdout);
+  }
+  std::filesystem::remove(file);
+}
+
+void chains() {
+  std::printf("\n### C. Rigid chains of N rods on revolute joints (dopri5, rtol 1e-6)\n\n");
+  std::printf("| N | rows | linear solver | us per rhs | us per rhs / N | sim time [s] | CPU s / sim s | steps | status |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (int n : {10, 50, 200, 1000}) {
+    std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+    std::string j = "joints:\n";
+    for (int k = 0; k < n; ++k) {
+      y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
+           std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
+      const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
+      const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
+      j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
+           "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
+    }
+    const double t_end = n <= 50 ? 0.2 : (n <= 200 ? 0.05 : 0.01);
+    char sim[160];
+    std::snprintf(sim, sizeof sim, "simulation: {t_end: %g, output_step: %g, rtol: 1e-6, integrator: dopri5}\n", t_end,
+                  t_end / 10);
+    const std::string scene = y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\n" + sim;
+    const fc::mbs::Model m = fc::mbs::test::sceneFromText(scene);
+    fc::mbs::System sys(m);
+    Eigen::VectorXd yv = sys.initialState(), yd;
+    sys.initializeJoints(yv);
+    sys.project(0.0, yv);
+    const int reps = std::max(5, 20000 / n);
+    const std::clock_t c0 = std::clock();
+    for (int k = 0; k < reps; ++k) sys.derivative(0.0, yv, yd);
+    const double us = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / reps;
+    const Results r = fc::mbs::simulate(m, {true});
+    std::printf("| %d | %d | %s | %.1f | %.2f | %g | %.3g | %ld | %s |\n", n, 5 * n,
+                5 * n <= fc::mbs::AlSolver::kMaxSchurRows ? "block Schur" : "sparse LDL^T", us, us / n, t_end,
+                r.cpu_seconds / r.t_reached, r.steps, r.status.substr(0, 12).c_str());
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string which = argc > 1 ? argv[1] : "ABC";
+  if (which.find('A') != std::string::npos) modes();
+  if (which.find('B') != std::string::npos) stiff();
+  if (which.find('C') != std::string::npos) chains();
+}
