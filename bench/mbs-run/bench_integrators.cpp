@@ -41,7 +41,7 @@ Results run(const std::string& file, int modes, const char* integ, double rtol, 
 }
 
 void modes() {
-  std::printf("\n### A. Beam pendulum, modes kept (0.5 s from the horizontal, pinned-root modes, undamped)\n\n");
+  std::printf("\n### A. Beam pendulum, modes kept (from the horizontal, 0.5 s up to 16 modes, 0.1 s above; pinned-root modes, undamped)\n\n");
   std::printf("| modes | omega_max [rad/s] | integrator | rtol | CPU s / sim s | steps | rhs evals | tip [m] | tip diff vs rtol 1e-6 [m] | status |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (int nm : {4, 16, 64, 100, 200}) {
@@ -52,12 +52,17 @@ void modes() {
     s.pinned_root = true;
     const auto bm = fc::mbs::test::cantileverBeam(s);
     const std::string file = fc::mbs::test::writeBeam(bm, "bench_modes");
-    const double t_end = 0.5;
-    const Results ref = run(file, nm, "imex", 1e-6, t_end);
+    // Shorter spans for many modes (each run is one measurement, not a loop).
+    const double t_end = nm <= 16 ? 0.5 : 0.1;
+    // Above 16 modes rtol 1e-4 only (the undamped high modes ring at the
+    // level of rtol 1e-6 and are resolved: minutes per case).
+    const double tight = nm <= 16 ? 1e-6 : 1e-4;
+    const Results ref = run(file, nm, "imex", tight, t_end);
     for (const char* integ : {"imex", "dopri5"}) {
       if (std::string(integ) == "dopri5" && nm > 16) continue;  // 119 s per simulated s at 64 modes (issue 17)
       for (double rtol : {1e-4, 1e-6}) {
-        const Results r = (std::string(integ) == "imex" && rtol == 1e-6) ? ref : run(file, nm, integ, rtol, t_end);
+        if (rtol < tight) continue;
+        const Results r = (std::string(integ) == "imex" && rtol == tight) ? ref : run(file, nm, integ, rtol, t_end);
         const double tp = tip(bm.body, r.modal[1].back());
         std::printf("| %d | %.3g | %s | %.0e | %.3g | %ld | %ld | %.6e | %.2e | %s |\n", nm,
                     std::sqrt(bm.body.eigenvalues(nm - 1)), integ, rtol, r.cpu_seconds / r.t_reached, r.steps,
