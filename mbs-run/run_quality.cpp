@@ -13,7 +13,10 @@ QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol) {
   // Floors: 10 steps (a short run's few steps still carry an error), and the
   // rounding of the energy terms themselves (1e-13 of their size). Cap: a
   // tenth of the scale, which a blow-up would otherwise raise with itself.
-  q.energy = std::clamp(double(std::max(r.steps, 10L)) * rtol, 1e-13, kMaxRelativeEnergyError) * r.energy_scale;
+  // Plus 1e-12 J absolute: the energies of bodies at rest are rounding
+  // (4e-14 J with an equal "error" on the static scenes of test_reactions).
+  q.energy = std::clamp(double(std::max(r.steps, 10L)) * rtol, 1e-13, kMaxRelativeEnergyError) * r.energy_scale +
+             kEnergyFloor;
   q.violation = 10.0 * (atol + rtol * r.length_scale);
   return q;
 }

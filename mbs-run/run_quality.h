@@ -26,6 +26,7 @@ namespace fc::mbs {
 struct RunSummary;
 
 constexpr double kMaxRelativeEnergyError = 0.1;
+constexpr double kEnergyFloor = 1e-12;  // [J]
 
 struct QualityLimits {
   double energy = 0.0;     // [J]

@@ -115,7 +115,10 @@ inline BeamModel cantileverBeam(const BeamSpec& s) {
     f.nodes(k, 0) = k * h;
     // Torsional and out-of-plane rotary inertias: any positive values (they
     // are not excited in plane), here those of the slice as well.
-    f.nodal_mass.row(k) << b.node_mass(k), b.node_rotary(k), b.node_rotary(k), b.node_rotary(k);
+    // Without bending rotary inertia the polar one (about the axis) stays:
+    // a body whose mass lies on a line is rejected by the body file writer.
+    const double polar = s.rotary_inertia ? b.node_rotary(k) : b.node_mass(k) * h * h / 12.0;
+    f.nodal_mass.row(k) << b.node_mass(k), polar, b.node_rotary(k), b.node_rotary(k);
   }
   const int nm = s.modes;
   f.shapes = Eigen::MatrixXd::Zero(6 * nn, nm);
