@@ -10,6 +10,11 @@ namespace fc {
 namespace {
 
 void listDatasets(const H5File& f, const std::string& group, int depth, std::ostringstream& os) {
+  // A damaged file can link a group into itself: the listing would recurse forever.
+  if (depth > 16) {
+    os << std::string(static_cast<std::size_t>(2 * depth + 2), ' ') << "(nested deeper than 16 groups: not listed)\n";
+    return;
+  }
   for (const auto& name : f.children(group)) {
     const std::string path = (group == "/" ? "" : group) + "/" + name;
     std::string indent(static_cast<std::size_t>(2 * depth + 2), ' ');
