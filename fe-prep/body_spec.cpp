@@ -269,6 +269,7 @@ BodySpec parseBodySpec(const InputNode& root) {
     spec.static_error = m["static_error"].asPositive();
     if (spec.static_error >= 1) m["static_error"].fail("expected a share below 1 (e.g. 0.01 for 1 %)");
   } else if (b.has("modes")) {
+    spec.modes_node = b["modes"];
     spec.modes = b["modes"].asInt();
     if (spec.modes < 1) b["modes"].fail("expected a positive number of modes, or {static_error: E}");
   } else if (b.has("max_frequency_hz")) {

@@ -64,6 +64,7 @@ struct BodySpec {
   std::vector<InterfaceSpec> interfaces;
   std::vector<ReferenceEntry> reference;  // empty: free
   long modes = 0;
+  InputNode modes_node;  // where `modes:` was given, for errors found once the mesh is known
   double static_error = 0.0;  // modes: {static_error: e}: the fewest modes that miss at most e (static_response.h)
   double max_frequency_hz = 0.0;
   bool lumped = true;  // false (mass: consistent): consistent mass in the eigenproblem

@@ -339,6 +339,11 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
     return t;
   };
+  // More modes than the held body has degrees of freedom cannot be had: refuse
+  // them here rather than let the eigen-solver search for what does not exist.
+  if (spec.modes > map.reduced - rigid.cols())
+    spec.modes_node.fail("asked for " + std::to_string(spec.modes) + " modes but the meshed body has only " +
+                         std::to_string(map.reduced - rigid.cols()) + " flexible degrees of freedom; ask for fewer modes or refine the mesh");
   ModalRequest req;
   req.modes = spec.static_error > 0 ? 8 : spec.modes;
   req.max_frequency_hz = spec.max_frequency_hz;

@@ -96,6 +96,9 @@ expect_error 2 "exit.geo:1:1: the .geo command 'Exit'" $FP panel.yaml -o out.h5 
 sed 's/exit.geo/system.geo/' panel.yaml > panel_sys.yaml
 expect_error 2 "system.geo:1:1: the .geo command 'System'" $FP panel_sys.yaml -o out.h5 -q
 [ -e PWNED ] && bad "fe-prep ran a .geo System command"
+# More modes than the mesh has degrees of freedom: refused at the key, not searched for forever.
+sed 's/mesh: {file: exit.geo}/rectangle: {length: 0.2, width: 0.1}\n    mesh: {triangles: 8}/; s/modes: 2/modes: 1000000000/' panel.yaml > panel_modes.yaml
+expect_error 2 "panel_modes.yaml:12:10: body.modes: asked for 1000000000 modes" $FP panel_modes.yaml -o out.h5 -q
 sed 's/mesh: {file: exit.geo}/rectangle: {length: 2, width: 1}\n    mesh: {size: 0.004}/' panel.yaml > slowpanel.yaml
 for sig in TERM HUP; do
   rm -f out*
