@@ -15,6 +15,15 @@ namespace {
 
 Vector3d vec3(const InputNode& n) { return n.asVector(3); }
 
+// Body and joint names become HDF5 group names in the results (/bodies/NAME,
+// /joints/NAME): refuse the ones HDF5 would read as a path, here at their key.
+std::string groupName(const InputNode& n) {
+  const std::string name = n.asString();
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    n.fail("expected a name usable as a results group (not empty, '.', '..', and without '/'), got '" + name + "'");
+  return name;
+}
+
 Vector3d unitVector(const InputNode& n) {
   const Vector3d v = n.asVector(3);
   if (v.norm() < 1e-12) n.fail("expected a non-zero direction vector, got [0, 0, 0]");
@@ -86,7 +95,7 @@ Body parseBody(const InputNode& b) {
   b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
                "angular_velocity", "modal_coordinates", "modal_velocities", "geometry"});
   Body body;
-  body.name = b["name"].asString();
+  body.name = groupName(b["name"]);
   parseInertia(b, body);
   if (b.has("rod")) body.geometry = std::make_shared<BodyGeometry>(rodGeometry(b["rod"]["length"].asPositive()));
   if (b.has("plate"))
@@ -196,7 +205,7 @@ Joint parseJoint(const Model& m, const InputNode& j) {
   j.allowKeys({"name", "type", "bodies", "points", "axes", "initial_angle", "enabled", "locked", "drive", "limits",
                "stop_only"});
   Joint jt;
-  jt.name = j["name"].asString();
+  jt.name = groupName(j["name"]);
   jt.type = jointType(j["type"]);
   const InputNode bodies = j["bodies"];
   if (!bodies.isSequence() || bodies.size() != 2) bodies.fail("expected two body names [first, second]");

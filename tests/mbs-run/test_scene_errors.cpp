@@ -42,6 +42,15 @@ TEST(SceneErrors, UnknownBodyInJoint) {
   expectError(kHead + "joints:\n  - {name: J, type: spherical, bodies: [ground, amr], points: [[0,0,0],[0,0,0]]}\n" + kSim,
               {6, "joints[0].bodies[1]", "unknown body 'amr'"});
 }
+TEST(SceneErrors, NamesThatAreNotResultsGroups) {
+  // A joint named "." once failed only when the results file made /joints/. (fuzz
+  // campaign, other seeds): names are HDF5 group names and are checked at their key.
+  for (const char* bad : {"\".\"", "\"..\"", "\"a/b\"", "\"\""})
+    expectError(kHead + "joints:\n  - {name: " + bad + ", type: spherical, bodies: [ground, arm], points: [[0,0,0],[0,0,0]]}\n" + kSim,
+                {6, "joints[0].name", "usable as a results group"});
+  expectError("bodies:\n  - {name: x/y, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}}\n" + kSim,
+              {2, "bodies[0].name", "usable as a results group"});
+}
 TEST(SceneErrors, MissingMass) {
   expectError("bodies:\n  - name: b\n    rigid: {inertia: [[1,0,0],[0,1,0],[0,0,1]]}\n" + kSim,
               {3, "bodies[0].rigid", "mass"});
