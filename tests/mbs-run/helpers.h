@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "common/flexbody.h"
@@ -17,6 +18,19 @@ namespace fc::mbs::test {
 
 inline Model sceneFromText(const std::string& yaml) {
   return parseScene(fc::InputNode::loadString(yaml, "test.yaml"));
+}
+
+// The text of a scene fragment shared by several tests (tests/data/mbs-run/scenes/NAME),
+// so that the same bodies are not pasted into each test; tests append the rest.
+inline std::string testScene(const std::string& name) {
+  const std::string path = std::string(FLEXCOMP_DATA_DIR) + "/mbs-run/scenes/" + name;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error("test scene missing: " + path);
+  std::string text;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+  std::fclose(f);
+  return text;
 }
 
 // Writes a body file (with its invariants) to a per-process temporary path

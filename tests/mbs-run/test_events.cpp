@@ -15,13 +15,7 @@
 namespace fc::mbs::test {
 namespace {
 
-const char* kPendulum = R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: arm
-    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
-    position: [0.5, 0, 0]
-joints:
+const std::string kPendulum = testScene("ground_and_rod.yaml") + R"(joints:
   - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]]}
 forces:
   - {name: g, type: gravity, g: [0, 0, -9.81]}
@@ -65,12 +59,7 @@ simulation: {t_end: 0.8, output_step: 0.01, rtol: 1.0e-10}
 }
 
 TEST(Events, AngleCrossingIsLocatedAccurately) {
-  const Results r = simulate(sceneFromText(R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rotor
-    rigid: {mass: 2.0, inertia: [[0.2,0,0],[0,0.3,0],[0,0,0.2]]}
-    angular_velocity: [0, 2.0, 0]
+  const Results r = simulate(sceneFromText(testScene("ground_and_rotor.yaml") + R"(    angular_velocity: [0, 2.0, 0]
 joints:
   - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]]}
 events:

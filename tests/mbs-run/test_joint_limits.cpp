@@ -95,13 +95,7 @@ double rodInertia() {
   return (3 * r * r + 1.0) / 12 + 0.25;
 }
 std::string pendulumScene(const std::string& limits, const std::string& sim, const std::string& extra = "") {
-  return R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: arm
-    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
-    position: [0.5, 0, 0]
-joints:
+  return testScene("ground_and_rod.yaml") + R"(joints:
   - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]],
      limits: )" + limits + R"(}
 forces:
@@ -189,13 +183,7 @@ TEST(JointLimits, StopOnlyJointOnAHingeOfTwoSphericals) {
   // The flexible SAR's hinge 2/3: two spherical joints on the hinge line hold
   // the bodies, a stop_only revolute on the same line carries the stop. On
   // the rigid pendulum it must give the revolute's closed forms.
-  const Results r = simulate(sceneFromText(R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: arm
-    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
-    position: [0.5, 0, 0]
-joints:
+  const Results r = simulate(sceneFromText(testScene("ground_and_rod.yaml") + R"(joints:
   - {name: Sa, type: spherical, bodies: [ground, arm], points: [[0, 0.1, 0], [-0.5, 0.1, 0]]}
   - {name: Sb, type: spherical, bodies: [ground, arm], points: [[0, -0.1, 0], [-0.5, -0.1, 0]]}
   - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]],
@@ -253,12 +241,7 @@ TEST(JointLimits, PlasticStopHoldsWhilePushedAndReleasesWhenPulled) {
   // the net +3 N m pulls it off at that instant, and then
   // angle = 3/I (t - 1)^2 / 2.
   const double I = 0.3;
-  const Results r = simulate(sceneFromText(R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rotor
-    rigid: {mass: 2.0, inertia: [[0.2,0,0],[0,0.3,0],[0,0,0.2]]}
-    angular_velocity: [0, -1.0, 0]
+  const Results r = simulate(sceneFromText(testScene("ground_and_rotor.yaml") + R"(    angular_velocity: [0, -1.0, 0]
 joints:
   - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]],
      initial_angle: 0.5, limits: {min: 0.0, restitution: 0.0}}
@@ -303,12 +286,7 @@ TEST(JointLimits, LatchEventLocksWithAPlasticLoss) {
   // A latch is an angle-crossing event that locks the joint: the rotor
   // (I_y = 0.3, 2 rad/s, no loads) reaches 1 rad at t = 0.5 exactly and stops
   // there; its kinetic energy 1/2 I w^2 = 0.6 J goes to the dissipated energy.
-  const Results r = simulate(sceneFromText(R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rotor
-    rigid: {mass: 2.0, inertia: [[0.2,0,0],[0,0.3,0],[0,0,0.2]]}
-    angular_velocity: [0, 2.0, 0]
+  const Results r = simulate(sceneFromText(testScene("ground_and_rotor.yaml") + R"(    angular_velocity: [0, 2.0, 0]
 joints:
   - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]]}
 events:

@@ -15,13 +15,7 @@
 namespace fc::mbs::test {
 namespace {
 
-const char* kScene = R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: arm
-    rod: {length: 1.0, diameter: 0.01, mass: 1.0}
-    position: [0.5, 0, 0]
-joints:
+const std::string kScene = testScene("ground_and_rod.yaml") + R"(joints:
   - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,1,0],[0,1,0]]}
 forces:
   - {type: gravity, g: [0, 0, -9.81]}
