@@ -5,12 +5,13 @@
 #include "fe-prep/elements/beam_flexibility.h"
 
 namespace fc::fe {
+namespace {
 
-BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
-                            const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
-                            const Matrix6d& Ms) {
+// The element's section axes: R (rows e1, e2, e3; v_local = R v_body) and its length.
+Eigen::Matrix3d sectionAxes(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, const Eigen::Vector3d& section_x2,
+                            double& L) {
   const Eigen::Vector3d axis = xb - xa;
-  const double L = axis.norm();
+  L = axis.norm();
   if (!(L > 0.0)) throw std::invalid_argument("beam element: coincident end nodes");
   const Eigen::Vector3d e1 = axis / L;
   const Eigen::Vector3d p = section_x2 - section_x2.dot(e1) * e1;
@@ -19,12 +20,27 @@ BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
     throw std::invalid_argument("beam element: section_x2 is parallel to the beam axis");
   const Eigen::Vector3d e2 = p.normalized();
   const Eigen::Vector3d e3 = e1.cross(e2);
-  Eigen::Matrix3d R;  // v_local = R v_body
+  Eigen::Matrix3d R;
   R.row(0) = e1.transpose();
   R.row(1) = e2.transpose();
   R.row(2) = e3.transpose();
+  return R;
+}
+
+Matrix12d blockRotation(const Eigen::Matrix3d& R) {
   Matrix12d T = Matrix12d::Zero();
   for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = R;
+  return T;
+}
+
+}  // namespace
+
+BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                            const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                            const Matrix6d& Ms) {
+  double L = 0.0;
+  const Eigen::Matrix3d R = sectionAxes(xa, xb, section_x2, L);  // v_local = R v_body
+  const Matrix12d T = blockRotation(R);
 
   const UniformBeam beam(Ks, L);
   BeamMatrices out;
@@ -43,6 +59,13 @@ BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
     }
   }
   return out;
+}
+
+Eigen::Matrix<double, 6, 12> beamMidpointResultants(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                                                    const Eigen::Vector3d& section_x2, const Matrix6d& Ks) {
+  double L = 0.0;
+  const Eigen::Matrix3d R = sectionAxes(xa, xb, section_x2, L);
+  return UniformBeam(Ks, L).sectionForces(0.5 * L) * blockRotation(R);
 }
 
 }  // namespace fc::fe

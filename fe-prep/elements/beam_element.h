@@ -25,4 +25,13 @@ BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
                             const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
                             const Matrix6d& Ms);
 
+// Section resultants at the element midpoint, [N, V2, V3, T, M2, M3] in the
+// element's section axes (x1 from xa to xb, x2 = section_x2 orthogonalised,
+// x3 = x1 x x2), as a linear map of the 12 body-frame nodal DOF (node a then b,
+// [u1 u2 u3 theta1 theta2 theta3] each). The element's own equilibrium carries
+// the end load its stiffness implies to the midpoint (UniformBeam::sectionForces),
+// so they are exact for loads applied at the nodes; rigid motions give zero.
+Eigen::Matrix<double, 6, 12> beamMidpointResultants(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                                                    const Eigen::Vector3d& section_x2, const Matrix6d& Ks);
+
 }  // namespace fc::fe

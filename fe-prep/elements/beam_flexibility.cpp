@@ -69,6 +69,11 @@ Eigen::Matrix<double, 6, 12> UniformBeam::shape(double x) const {
   return N;
 }
 
+Eigen::Matrix<double, 6, 12> UniformBeam::sectionForces(double x) const {
+  const Matrix6d Tx = Matrix6d::Identity() + (L_ - x) * transferE();
+  return Tx * K_tip_ * Gamma_;
+}
+
 Matrix12d UniformBeam::consistentMass(const Matrix6d& Ms) const {
   Matrix12d M = Matrix12d::Zero();
   for (int q = 0; q < 4; ++q) {

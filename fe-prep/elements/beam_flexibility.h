@@ -33,6 +33,12 @@ class UniformBeam {
   Eigen::Matrix<double, 6, 12> shape(double x) const;
   // int_0^L N^T Ms N dx (exact: N is cubic in x, 4-point Gauss).
   Matrix12d consistentMass(const Matrix6d& Ms) const;
+  // Section forces and moments s(x) = T(x) P (VABS order [N, V2, V3, T, M2, M3],
+  // on the face whose outward normal is +x1: N > 0 in tension) as a function of
+  // the 12 nodal DOF: P = K_tip Gamma q is the end load at node b that the
+  // element's stiffness puts there, carried to x by equilibrium. Exact for a
+  // beam loaded at its nodes only (the element's own assumption).
+  Eigen::Matrix<double, 6, 12> sectionForces(double x) const;
 
  private:
   Matrix6d C_;  // section compliance S^-1
