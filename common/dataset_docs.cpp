@@ -23,26 +23,6 @@ bool matches(const std::string& pattern, const std::string& path) {
   return true;
 }
 
-void annotateGroup(H5File& f, const std::string& format, const std::string& group) {
-  for (const auto& name : f.children(group)) {
-    const std::string path = (group == "/" ? "" : group) + "/" + name;
-    bool is_dataset = true;
-    try {
-      f.shape(path);
-    } catch (const H5Error&) {
-      is_dataset = false;
-    }
-    if (!is_dataset) {
-      annotateGroup(f, format, path);
-      continue;
-    }
-    const DatasetDoc* doc = findDatasetDoc(format, path);
-    if (!doc) continue;
-    if (!f.hasAttribute(path, "units")) f.setAttribute(path, "units", doc->units);
-    if (!f.hasAttribute(path, "description")) f.setAttribute(path, "description", doc->description);
-  }
-}
-
 }  // namespace
 
 const std::vector<DatasetDoc>& datasetDocs() {
@@ -132,7 +112,16 @@ const DatasetDoc* findDatasetDoc(const std::string& format, const std::string& p
 void annotateDatasets(H5File& f) {
   if (!f.hasAttribute("/", "format")) return;
   const std::string fmt = f.stringAttribute("/", "format");
-  annotateGroup(f, fmt.substr(0, fmt.find('/')), "/");
+  const std::string format = fmt.substr(0, fmt.find('/'));
+  walkTree(f, "/", [&](const H5TreeEntry& e) {
+    if (e.kind == H5TreeEntry::Kind::Group) return true;
+    if (e.kind != H5TreeEntry::Kind::Dataset || e.seen_before) return false;
+    if (const DatasetDoc* doc = findDatasetDoc(format, e.path)) {
+      if (!f.hasAttribute(e.path, "units")) f.setAttribute(e.path, "units", doc->units);
+      if (!f.hasAttribute(e.path, "description")) f.setAttribute(e.path, "description", doc->description);
+    }
+    return false;
+  });
 }
 
 }  // namespace fc

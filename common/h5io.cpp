@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <set>
 #include <sstream>
 
 #include "common/dataset_docs.h"
@@ -205,6 +206,94 @@ std::vector<std::string> H5File::children(const std::string& group_path) const {
     out.push_back(name);
   }
   return out;
+}
+
+namespace {
+
+// File number and address (token from HDF5 1.12) of the object a path leads to:
+// equal for every link to one object. False when the path leads nowhere.
+bool objectIdentity(hid_t file, const std::string& path, std::string* key, H5O_type_t* type) {
+#if H5_VERSION_GE(1, 12, 0)
+  H5O_info2_t info;
+  if (H5Oget_info_by_name3(file, path.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) return false;
+  *key = std::to_string(info.fileno) + ":" +
+         std::string(reinterpret_cast<const char*>(&info.token), sizeof info.token);
+#else
+  H5O_info_t info;
+  if (H5Oget_info_by_name2(file, path.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) return false;
+  *key = std::to_string(info.fileno) + ":" + std::to_string(info.addr);
+#endif
+  *type = info.type;
+  return true;
+}
+
+// Where a soft or external link points ("FILE:/path" for external ones).
+std::string linkTarget(hid_t file, const std::string& path, const H5L_info_t& li) {
+  const std::size_t n = li.u.val_size;
+  if (n == 0 || n > 65536) return "?";
+  std::vector<char> buf(n + 1, '\0');
+  if (H5Lget_val(file, path.c_str(), buf.data(), n, H5P_DEFAULT) < 0) return "?";
+  if (li.type == H5L_TYPE_SOFT) return std::string(buf.data());
+  const char* target_file = nullptr;
+  const char* target_path = nullptr;
+  unsigned flags = 0;
+  if (H5Lunpack_elink_val(buf.data(), n, &flags, &target_file, &target_path) < 0) return "?";
+  return std::string(target_file ? target_file : "?") + ":" + (target_path ? target_path : "?");
+}
+
+}  // namespace
+
+void walkTree(const H5File& f, const std::string& group,
+              const std::function<bool(const H5TreeEntry&)>& enter) {
+  std::set<std::string> seen;
+  std::string key;
+  H5O_type_t type;
+  if (!objectIdentity(f.id(), group, &key, &type) || type != H5O_TYPE_GROUP)
+    throw H5Error(f.path() + ": no group " + group);
+  seen.insert(key);
+  // Links still to visit, the next one last: depth first without recursion, so a
+  // deeply nested file cannot exhaust the stack either.
+  std::vector<std::pair<std::string, int>> pending;
+  const auto push_children = [&](const std::string& g, int depth) {
+    const std::vector<std::string> kids = f.children(g);
+    for (auto it = kids.rbegin(); it != kids.rend(); ++it)
+      pending.emplace_back((g == "/" ? "" : g) + "/" + *it, depth);
+  };
+  push_children(group, 0);
+  while (!pending.empty()) {
+    H5TreeEntry e;
+    e.path = pending.back().first;
+    e.depth = pending.back().second;
+    pending.pop_back();
+    e.name = e.path.substr(e.path.rfind('/') + 1);
+    H5L_info_t li;
+    if (H5Lget_info(f.id(), e.path.c_str(), &li, H5P_DEFAULT) < 0) {
+      e.kind = H5TreeEntry::Kind::Dangling;
+      enter(e);
+      continue;
+    }
+    if (li.type == H5L_TYPE_SOFT || li.type == H5L_TYPE_EXTERNAL) e.target = linkTarget(f.id(), e.path, li);
+    if (li.type == H5L_TYPE_EXTERNAL) {
+      e.kind = H5TreeEntry::Kind::External;
+      enter(e);
+      continue;
+    }
+    if (li.type != H5L_TYPE_HARD && li.type != H5L_TYPE_SOFT) {
+      e.kind = H5TreeEntry::Kind::Other;
+      enter(e);
+      continue;
+    }
+    if (!objectIdentity(f.id(), e.path, &key, &type)) {
+      e.kind = H5TreeEntry::Kind::Dangling;
+      enter(e);
+      continue;
+    }
+    e.kind = type == H5O_TYPE_GROUP     ? H5TreeEntry::Kind::Group
+             : type == H5O_TYPE_DATASET ? H5TreeEntry::Kind::Dataset
+                                        : H5TreeEntry::Kind::Other;
+    e.seen_before = !seen.insert(key).second;
+    if (enter(e) && e.kind == H5TreeEntry::Kind::Group && !e.seen_before) push_children(e.path, e.depth + 1);
+  }
 }
 
 void H5File::createGroup(const std::string& path) { ensureGroups(id_, path, path_); }

@@ -8,6 +8,7 @@
 #include <hdf5.h>
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -110,6 +111,27 @@ class AtomicH5Writer {
   std::unique_ptr<TemporaryRegistration> registration_;
   bool committed_ = false;
 };
+
+// One entry of walkTree: the link at `path` (`name` within its group, `depth` 0 for the
+// group walked), what it leads to, and whether that object was already met through
+// another link (then a group is not entered again).
+struct H5TreeEntry {
+  enum class Kind { Group, Dataset, Other, External, Dangling };
+  std::string path, name;
+  int depth = 0;
+  Kind kind = Kind::Other;
+  bool seen_before = false;
+  std::string target;  // soft and external links: where the link points
+};
+
+// Visits every link below `group` once, depth first in name order, without recursion.
+// `enter(entry)` is called for each link; for a group not met before, returning true
+// walks its contents. Objects are identified by file and address (H5Oget_info), so a
+// group linked into itself or an ancestor (a hard or soft link cycle, as a damaged or
+// hostile file can hold) is entered once and every walk ends. External links are
+// reported, never followed (they would open another file).
+void walkTree(const H5File& f, const std::string& group,
+              const std::function<bool(const H5TreeEntry&)>& enter);
 
 // Throws H5Error naming the dataset or attribute when a float one holds NaN/inf.
 void checkAllFinite(const H5File& f);

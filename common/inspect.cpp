@@ -9,48 +9,72 @@ namespace fc {
 
 namespace {
 
-void listDatasets(const H5File& f, const std::string& group, int depth, std::ostringstream& os) {
-  // A damaged file can link a group into itself: the listing would recurse forever.
-  if (depth > 16) {
-    os << std::string(static_cast<std::size_t>(2 * depth + 2), ' ') << "(nested deeper than 16 groups: not listed)\n";
-    return;
-  }
-  for (const auto& name : f.children(group)) {
-    const std::string path = (group == "/" ? "" : group) + "/" + name;
-    std::string indent(static_cast<std::size_t>(2 * depth + 2), ' ');
-    bool is_group = true;
-    try {
-      const auto dims = f.shape(path);
-      is_group = false;
-      os << indent << name << "  (";
-      for (std::size_t i = 0; i < dims.size(); ++i) os << (i ? ", " : "") << dims[i];
-      os << ")";
-      if (dims.empty() || (dims.size() == 1 && dims[0] == 1)) {
+void listDataset(const H5File& f, const std::string& path, std::ostringstream& os) {
+  try {
+    const auto dims = f.shape(path);
+    os << "  (";
+    for (std::size_t i = 0; i < dims.size(); ++i) os << (i ? ", " : "") << dims[i];
+    os << ")";
+    if (dims.empty() || (dims.size() == 1 && dims[0] == 1)) {
+      try {
+        const double v = f.readScalar(path);
+        os << " = " << v;
+      } catch (const H5Error&) {
         try {
-          const double v = f.readScalar(path);
-          os << " = " << v;
+          const std::string v = f.readString(path);
+          os << " = \"" << v << "\"";
         } catch (const H5Error&) {
-          try {
-            const std::string v = f.readString(path);
-            os << " = \"" << v << "\"";
-          } catch (const H5Error&) {
-          }
         }
       }
-      os << "\n";
-    } catch (const H5Error&) {
     }
-    if (is_group) {
-      os << indent << name << "/\n";
-      // Interfaces and bodies can be many: list their names only past a few.
-      const auto kids = f.children(path);
-      if (depth >= 1 && kids.size() > 12) {
-        os << indent << "  (" << kids.size() << " entries)\n";
-        continue;
-      }
-      listDatasets(f, path, depth + 1, os);
-    }
+  } catch (const H5Error&) {
+    os << "  (unreadable)";
   }
+  os << "\n";
+}
+
+// A damaged or hostile file can link a group into itself or an ancestor: walkTree
+// enters each group once; the depth limit keeps a legitimately deep file readable.
+void listDatasets(const H5File& f, std::ostringstream& os) {
+  using Kind = H5TreeEntry::Kind;
+  walkTree(f, "/", [&](const H5TreeEntry& e) {
+    const std::string indent(static_cast<std::size_t>(2 * e.depth + 2), ' ');
+    os << indent << e.name;
+    if (e.kind == Kind::Group) os << "/";
+    if (!e.target.empty()) os << " -> " << e.target;
+    switch (e.kind) {
+      case Kind::Dataset:
+        listDataset(f, e.path, os);
+        return false;
+      case Kind::External:
+        os << "  (external link: not followed)\n";
+        return false;
+      case Kind::Dangling:
+        os << "  (link to nothing)\n";
+        return false;
+      case Kind::Other:
+        os << "  (neither group nor dataset)\n";
+        return false;
+      case Kind::Group:
+        break;
+    }
+    if (e.seen_before) {
+      os << "  (a group met above, through another link: not entered again)\n";
+      return false;
+    }
+    os << "\n";
+    if (e.depth >= 16) {
+      os << indent << "  (nested deeper than 16 groups: not listed)\n";
+      return false;
+    }
+    // Interfaces and bodies can be many: list their names only past a few.
+    const auto kids = f.children(e.path);
+    if (e.depth >= 1 && kids.size() > 12) {
+      os << indent << "  (" << kids.size() << " entries)\n";
+      return false;
+    }
+    return true;
+  });
 }
 
 void summarise(const H5File& f, const std::string& kind, std::ostringstream& os) {
@@ -116,7 +140,7 @@ std::string inspectFile(const std::string& path) {
     os << "summary: not available (" << e.what() << ")\n";
   }
   os << "datasets:\n";
-  listDatasets(f, "/", 0, os);
+  listDatasets(f, os);
   return os.str();
 }
 

@@ -345,3 +345,84 @@ TEST(H5Readers, InspectSurvivesStringsWhereNumbersBelong) {
   }
   EXPECT_NE(fc::inspectFile(sec).find("summary: not available"), std::string::npos);
 }
+
+namespace {
+
+// A file whose groups link back into themselves, made with the HDF5 C API as a
+// damaged or hostile input could be: /a/loop -> / and /a/b/up -> /a (hard links),
+// /a/b/soft_loop -> /a and /s -> /a/b (soft links), a dangling soft link and an
+// external link to a file that does not exist.
+void writeCyclicFile(const std::string& path) {
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  {
+    fc::H5File file = fc::H5File::adopt(f, path);
+    fc::writeProvenance(file, "flexbody/1", "test", "x");
+    file.writeScalar("/a/b/x", 2.5);
+    file.writeScalar("/inertia/mass", 1.0);
+    ASSERT_GE(H5Lcreate_hard(f, "/", f, "/a/loop", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_hard(f, "/a", f, "/a/b/up", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_soft("/a", f, "/a/b/soft_loop", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_soft("/a/b", f, "/s", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_soft("/nowhere", f, "/dangling", H5P_DEFAULT, H5P_DEFAULT), 0);
+    ASSERT_GE(H5Lcreate_external("absent.h5", "/", f, "/ext", H5P_DEFAULT, H5P_DEFAULT), 0);
+    file.closeChecked();
+  }
+}
+
+// Runs body in a child that SIGALRM kills after `seconds`: a hang fails the test
+// instead of hanging the suite. True when the child exited 0.
+template <class F>
+bool endsWithin(unsigned seconds, F body) {
+  const int status = inChild([&] {
+    alarm(seconds);
+    body();
+  });
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+// The listing used to recurse forever on /a/loop -> / (and was cut at 16 levels, after
+// which annotateDatasets still hung): every tree walk now enters each group once.
+TEST(H5Readers, TreeWalksEndOnLinkCycles) {
+  const fs::path d = freshDir("cycles");
+  const std::string path = (d / "cyclic.h5").string(), listing = (d / "listing.txt").string();
+  writeCyclicFile(path);
+  ASSERT_TRUE(endsWithin(20, [&] {
+    std::ofstream(listing) << fc::inspectFile(path);
+  })) << "inspectFile did not end on a file with link cycles";
+  const std::string out = readAll(listing);
+  const auto count = [&](const std::string& s) {
+    std::size_t n = 0;
+    for (auto p = out.find(s); p != std::string::npos; p = out.find(s, p + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("x  () = 2.5"), 1u) << out;  // listed once, not again through /s or the loops
+  EXPECT_NE(out.find("loop/  (a group met above, through another link: not entered again)"), std::string::npos) << out;
+  EXPECT_NE(out.find("up/  (a group met above"), std::string::npos) << out;
+  EXPECT_NE(out.find("soft_loop/ -> /a  (a group met above"), std::string::npos) << out;
+  EXPECT_NE(out.find("s/ -> /a/b  (a group met above"), std::string::npos) << out;
+  EXPECT_NE(out.find("dangling -> /nowhere  (link to nothing)"), std::string::npos) << out;
+  EXPECT_NE(out.find("ext -> absent.h5:/  (external link: not followed)"), std::string::npos) << out;
+  EXPECT_EQ(out.find("nested deeper"), std::string::npos) << out;
+
+  // The writer's commit walks the tree too (annotateDatasets, checkAllFinite).
+  const std::string written = (d / "written.h5").string();
+  ASSERT_TRUE(endsWithin(20, [&] {
+    fc::AtomicH5Writer w(written);
+    fc::writeProvenance(w.file(), "flexbody/1", "test", "x");
+    w.file().writeScalar("/inertia/mass", 3.0);
+    const hid_t id = w.file().id();
+    if (H5Lcreate_hard(id, "/", id, "/inertia/loop", H5P_DEFAULT, H5P_DEFAULT) < 0) _exit(3);
+    w.commit();
+  })) << "AtomicH5Writer::commit did not end on a file with a link cycle";
+  fc::H5File f(written, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.stringAttribute("/inertia/mass", "units"), "kg");
+  EXPECT_EQ(f.readScalar("/inertia/loop/inertia/mass"), 3.0);
+}

@@ -79,6 +79,12 @@ rm -f out_good.h5 good.copy
 # --- fe-prep: bad section/body files, .geo commands, signals ------------------------
 expect_error 2 "body_bad_section.yaml:5:54: body.beam.section.file: .*must be a 6 x 6 matrix, got 5 x 6" $FP body_bad_section.yaml -o out.h5 -q
 timeout 60 $FP --inspect body_string_nodes.h5 > log 2>&1 || bad "fe-prep --inspect of a string dataset -> exit $?"
+# Groups linked back into themselves (hard and soft link cycles): every tool's --inspect
+# ends, listing each group once (the file is written by writeCyclicFile, test_robust_io.cpp).
+for T in $SP $FP $B/mbs-run/mbs-run; do
+  timeout 60 $T --inspect cyclic_groups.h5 > log 2>&1 || bad "$T --inspect of a cyclic file -> exit $?"
+  [ "$(grep -c 'not entered again' log)" = 4 ] || bad "$T --inspect of a cyclic file: $(head -c 600 log)"
+done
 cat > panel.yaml <<'YAML'
 materials:
   m: {type: isotropic, E: 70e9, nu: 0.3, rho: 2700}
