@@ -1,16 +1,12 @@
 #include "fe-prep/assembly.h"
 
+#include "fe-prep/petsc_handles.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace fc::feprep {
-
-namespace {
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
-}
-}  // namespace
 
 AssembledSystem::~AssembledSystem() {
   if (K) MatDestroy(&K);

@@ -2,72 +2,12 @@
 
 #include "fe-prep/static_response.h"
 
-#include <petscksp.h>
+#include "fe-prep/petsc_handles.h"
 
 #include <stdexcept>
 #include <string>
 
 namespace fc::feprep {
-namespace {
-
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
-}
-
-// PETSc handles released on every path.
-struct VecH {
-  Vec v = nullptr;
-  ~VecH() {
-    if (v) VecDestroy(&v);
-  }
-};
-struct KspH {
-  KSP k = nullptr;
-  ~KspH() {
-    if (k) KSPDestroy(&k);
-  }
-};
-struct ScatterH {
-  VecScatter s = nullptr;
-  ~ScatterH() {
-    if (s) VecScatterDestroy(&s);
-  }
-};
-
-void setLocal(Vec x, const Eigen::VectorXd& v) {
-  PetscInt lo, hi;
-  check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
-  PetscScalar* a;
-  check(VecGetArray(x, &a), "VecGetArray");
-  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = v(i);
-  check(VecRestoreArray(x, &a), "VecRestoreArray");
-}
-
-Eigen::VectorXd gatherAll(Vec x) {
-  ScatterH sc;
-  VecH all;
-  check(VecScatterCreateToAll(x, &sc.s, &all.v), "VecScatterCreateToAll");
-  check(VecScatterBegin(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt n;
-  check(VecGetSize(all.v, &n), "VecGetSize");
-  const PetscScalar* a;
-  check(VecGetArrayRead(all.v, &a), "VecGetArrayRead");
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(a, n);
-  check(VecRestoreArrayRead(all.v, &a), "VecRestoreArrayRead");
-  return out;
-}
-
-// A v for a whole vector v on every rank; the whole product on every rank.
-Eigen::VectorXd multiply(Mat A, const Eigen::VectorXd& v) {
-  VecH x, y;
-  check(MatCreateVecs(A, &x.v, &y.v), "MatCreateVecs");
-  setLocal(x.v, v);
-  check(MatMult(A, x.v, y.v), "MatMult");
-  return gatherAll(y.v);
-}
-
-}  // namespace
 
 void appendLifts(long n_nodes, const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Eigen::VectorXd>& lifts) {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeThinU | Eigen::ComputeThinV);
@@ -88,26 +28,18 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
   // Constraint modes: one factorisation of the fixed-interface K, nb solves.
   out.constraint_modes.resize(N, nb);
   {
-    KspH ksp;
-    check(KSPCreate(comm, &ksp.k), "KSPCreate");
-    check(KSPSetOperators(ksp.k, in.K_fixed, in.K_fixed), "KSPSetOperators");
-    check(KSPSetType(ksp.k, KSPPREONLY), "KSPSetType");
-    PC pc;
-    check(KSPGetPC(ksp.k, &pc), "KSPGetPC");
-    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-    check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
-    VecH b, x;
-    check(MatCreateVecs(in.K_fixed, &x.v, &b.v), "MatCreateVecs");
+    OwnedKsp ksp = choleskySolver(comm, in.K_fixed);
+    OwnedVec b, x;
+    check(MatCreateVecs(in.K_fixed, &x, &b), "MatCreateVecs");
     for (long j = 0; j < nb; ++j) {
-      setLocal(b.v, -reduceForce(*in.fixed, in.K_lifts.col(j)));
-      check(KSPSolve(ksp.k, b.v, x.v), "KSPSolve");
+      setLocal(b, -reduceForce(*in.fixed, in.K_lifts.col(j)));
+      check(KSPSolve(ksp, b, x), "KSPSolve");
       KSPConvergedReason why;
-      check(KSPGetConvergedReason(ksp.k, &why), "KSPGetConvergedReason");
+      check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
       if (why < 0)
         throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
                                  "rigid motions free: clamp the boundary interfaces, or pin at least three)");
-      out.constraint_modes.col(j) = in.lifts.col(j) + in.fixed->expand(gatherAll(x.v));
+      out.constraint_modes.col(j) = in.lifts.col(j) + in.fixed->expand(gatherAll(x));
     }
   }
   // The basis in the free body's DOF, the reduced matrices, their eigenvectors.

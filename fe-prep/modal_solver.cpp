@@ -2,6 +2,8 @@
 
 #include <slepceps.h>
 
+#include "fe-prep/petsc_handles.h"
+
 #include <algorithm>
 #include <memory>
 #include <cmath>
@@ -13,36 +15,7 @@
 namespace fc::feprep {
 namespace {
 
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("SLEPc/PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
-}
-
-// PETSc/SLEPc objects released on every path, a thrown error included (issue 12).
-template <class T, PetscErrorCode (*Destroy)(T*)>
-struct Owned {
-  T h = nullptr;
-  Owned() = default;
-  explicit Owned(T x) : h(x) {}
-  Owned(const Owned&) = delete;
-  Owned& operator=(const Owned&) = delete;
-  Owned(Owned&& o) noexcept : h(o.h) { o.h = nullptr; }
-  Owned& operator=(Owned&& o) noexcept {
-    if (this != std::addressof(o)) {
-      if (h) Destroy(&h);
-      h = o.h;
-      o.h = nullptr;
-    }
-    return *this;
-  }
-  ~Owned() {
-    if (h) Destroy(&h);
-  }
-  T* operator&() { return &h; }
-  operator T() const { return h; }
-};
-using OwnedVec = Owned<Vec, VecDestroy>;
 using OwnedEps = Owned<EPS, EPSDestroy>;
-using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
 
 struct MonitorContext {
   const std::function<void(long, long)>* progress;
@@ -59,12 +32,7 @@ PetscErrorCode monitor(EPS, PetscInt, PetscInt nconv, PetscScalar*, PetscScalar*
 OwnedVec toPetsc(Mat M, const Eigen::VectorXd& v) {
   OwnedVec x;
   check(MatCreateVecs(M, &x, nullptr), "MatCreateVecs");
-  PetscInt lo, hi;
-  check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
-  PetscScalar* a;
-  check(VecGetArray(x, &a), "VecGetArray");
-  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = v(i);
-  check(VecRestoreArray(x, &a), "VecRestoreArray");
+  setLocal(x, v);
   return x;
 }
 

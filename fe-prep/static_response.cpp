@@ -1,63 +1,12 @@
 #include "fe-prep/static_response.h"
 
-#include <petscksp.h>
+#include "fe-prep/petsc_handles.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace fc::feprep {
-namespace {
-
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(ierr) + ")");
-}
-
-// PETSc handles released on every path.
-struct VecH {
-  Vec v = nullptr;
-  ~VecH() {
-    if (v) VecDestroy(&v);
-  }
-};
-struct KspH {
-  KSP k = nullptr;
-  ~KspH() {
-    if (k) KSPDestroy(&k);
-  }
-};
-struct ScatterH {
-  VecScatter s = nullptr;
-  ~ScatterH() {
-    if (s) VecScatterDestroy(&s);
-  }
-};
-
-void setLocal(Vec x, const Eigen::VectorXd& v) {
-  PetscInt lo, hi;
-  check(VecGetOwnershipRange(x, &lo, &hi), "VecGetOwnershipRange");
-  PetscScalar* a;
-  check(VecGetArray(x, &a), "VecGetArray");
-  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = v(i);
-  check(VecRestoreArray(x, &a), "VecRestoreArray");
-}
-
-Eigen::VectorXd gatherAll(Vec x) {
-  ScatterH sc;
-  VecH all;
-  check(VecScatterCreateToAll(x, &sc.s, &all.v), "VecScatterCreateToAll");
-  check(VecScatterBegin(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(sc.s, x, all.v, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt n;
-  check(VecGetSize(all.v, &n), "VecGetSize");
-  const PetscScalar* a;
-  check(VecGetArrayRead(all.v, &a), "VecGetArrayRead");
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(a, n);
-  check(VecRestoreArrayRead(all.v, &a), "VecRestoreArrayRead");
-  return out;
-}
-
-}  // namespace
 
 Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
   Eigen::VectorXd r = Eigen::VectorXd::Zero(map.reduced);
@@ -71,25 +20,17 @@ Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
 }
 
 Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces) {
-  KspH ksp;
-  check(KSPCreate(comm, &ksp.k), "KSPCreate");
-  check(KSPSetOperators(ksp.k, K, K), "KSPSetOperators");
-  check(KSPSetType(ksp.k, KSPPREONLY), "KSPSetType");
-  PC pc;
-  check(KSPGetPC(ksp.k, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-  check(KSPSetFromOptions(ksp.k), "KSPSetFromOptions");
-  VecH b, x;
-  check(MatCreateVecs(K, &x.v, &b.v), "MatCreateVecs");
+  OwnedKsp ksp = choleskySolver(comm, K);
+  OwnedVec b, x;
+  check(MatCreateVecs(K, &x, &b), "MatCreateVecs");
   Eigen::MatrixXd out(forces.rows(), forces.cols());
   for (long j = 0; j < forces.cols(); ++j) {
-    setLocal(b.v, reduceForce(map, forces.col(j)));
-    check(KSPSolve(ksp.k, b.v, x.v), "KSPSolve");
+    setLocal(b, reduceForce(map, forces.col(j)));
+    check(KSPSolve(ksp, b, x), "KSPSolve");
     KSPConvergedReason why;
-    check(KSPGetConvergedReason(ksp.k, &why), "KSPGetConvergedReason");
+    check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
     if (why < 0) throw std::runtime_error("the stiffness with the reference conditions is singular (rigid motions left free)");
-    out.col(j) = map.expand(gatherAll(x.v));
+    out.col(j) = map.expand(gatherAll(x));
   }
   return out;
 }

@@ -1,0 +1,56 @@
+#pragma once
+// PETSc plumbing shared by fe-prep's solvers (assembly, modal_solver,
+// craig_bampton, static_response): an error check that throws, handles that
+// release their object on every path (a thrown error included), whole
+// vectors to and from a distributed Vec, and the MUMPS Cholesky solver that
+// every factorisation in fe-prep uses.
+#include <petscksp.h>
+
+#include <Eigen/Dense>
+#include <memory>
+
+namespace fc::feprep {
+
+// Throws std::runtime_error "PETSc error in WHAT (code N)" for a non-zero code.
+void check(PetscErrorCode ierr, const char* what);
+
+// Owns a PETSc/SLEPc object: `&h` passes it to a Create call, `h` converts to
+// the raw handle; the Destroy function runs once, on destruction or reassignment.
+template <class T, PetscErrorCode (*Destroy)(T*)>
+struct Owned {
+  T h = nullptr;
+  Owned() = default;
+  explicit Owned(T x) : h(x) {}
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  Owned(Owned&& o) noexcept : h(o.h) { o.h = nullptr; }
+  Owned& operator=(Owned&& o) noexcept {
+    if (this != std::addressof(o)) {
+      if (h) Destroy(&h);
+      h = o.h;
+      o.h = nullptr;
+    }
+    return *this;
+  }
+  ~Owned() {
+    if (h) Destroy(&h);
+  }
+  T* operator&() { return &h; }
+  operator T() const { return h; }
+};
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedMat = Owned<Mat, MatDestroy>;
+using OwnedKsp = Owned<KSP, KSPDestroy>;
+using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
+
+// Writes this rank's rows of the whole vector v into x.
+void setLocal(Vec x, const Eigen::VectorXd& v);
+// The whole of x on every rank.
+Eigen::VectorXd gatherAll(Vec x);
+// A v for a whole vector v on every rank; the whole product on every rank.
+Eigen::VectorXd multiply(Mat A, const Eigen::VectorXd& v);
+// A direct solver for the symmetric positive definite A: KSPPREONLY with a
+// MUMPS Cholesky factorisation (command-line PETSc options still apply).
+OwnedKsp choleskySolver(MPI_Comm comm, Mat A);
+
+}  // namespace fc::feprep
