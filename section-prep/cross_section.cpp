@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <ctime>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -89,6 +90,83 @@ void checkMesh(const SectionMesh& mesh) {
       elementError(mesh, e, "a triangle uses node slots 1-3 and 5-7 only");
     if (e.material < 0 || e.material >= static_cast<int>(mesh.materials.size()))
       elementError(mesh, e, "material index out of range");
+  }
+}
+
+// Geometry every element must have, whatever mesh it came from. Each defect below
+// leaves the warping problem solvable and the answer silently wrong:
+// - a positive area (corners at one place or on one line);
+// - a Jacobian of one sign over the element: a misplaced mid-side node or corners
+//   given in bow-tie order fold the element over itself;
+// - neighbours on opposite sides of each shared corner edge: a node moved across an
+//   edge, or an element given twice, makes two elements overlap.
+// A whole element numbered clockwise is not a defect: the integrals use |det J|.
+void checkElementGeometry(const SectionMesh& mesh) {
+  const auto located = [&](const SectionElement& e) {
+    return "element " + std::to_string(e.user_id) +
+           (e.source_line > 0 ? " (line " + std::to_string(e.source_line) + ")" : std::string());
+  };
+  // Corner edge (lower node, higher node) -> the element on it and the side its interior is on.
+  std::map<std::pair<int, int>, std::pair<const SectionElement*, int>> edges;
+  for (const SectionElement& e : mesh.elements) {
+    const int corners = e.shape == ElementShape::Triangle ? 3 : 4;
+    double size = 0, twice_area = 0;
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (int k = 0; k < corners; ++k) {
+      const Eigen::Vector2d& a = mesh.nodes[e.nodes[k]];
+      const Eigen::Vector2d& b = mesh.nodes[e.nodes[(k + 1) % corners]];
+      size = std::max(size, (b - a).norm());
+      twice_area += a.x() * b.y() - b.x() * a.y();
+      centroid += a / corners;
+    }
+    if (!(std::abs(twice_area) > 1e-12 * size * size))
+      elementError(mesh, e, "has zero area (its corners are at one place or on one line); expected "
+                            "corners around a positive area, in order");
+    const double orientation = twice_area > 0 ? 1.0 : -1.0;
+
+    const ElementNodes en = elementNodes(e);
+    std::vector<std::pair<double, double>> points;
+    for (const auto& q : quadratureRule(e.shape, en.count)) points.emplace_back(q.r, q.s);
+    const std::size_t n_inner = points.size();
+    if (e.shape == ElementShape::Triangle)
+      points.insert(points.end(), {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}});
+    else
+      points.insert(points.end(), {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const ShapeValues sv = shapeFunctions(e.shape, en.present, points[i].first, points[i].second);
+      Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+      for (int a = 0; a < en.count; ++a) {
+        const int k = en.slot[a];
+        J.row(0) += sv.dNdr[k] * mesh.nodes[en.node[a]].transpose();
+        J.row(1) += sv.dNds[k] * mesh.nodes[en.node[a]].transpose();
+      }
+      // Inside: strictly the corner polygon's sign. At a corner, 0 is allowed (a
+      // quadrilateral with a straight angle there, or collapsed to a triangle).
+      const double det = orientation * J.determinant();
+      const double floor = i < n_inner ? 0.0 : -1e-12 * size * size;
+      if (!(det > floor))
+        elementError(mesh, e, "is folded over itself (its Jacobian changes sign inside it): expected "
+                              "the corners in order around the element and each mid-side node "
+                              "between its two corners");
+    }
+
+    for (int k = 0; k < corners; ++k) {
+      const int a = e.nodes[k], b = e.nodes[(k + 1) % corners];
+      if (a == b) continue;  // a quadrilateral collapsed to a triangle
+      const Eigen::Vector2d d = mesh.nodes[b] - mesh.nodes[a], c = centroid - mesh.nodes[a];
+      const int side = (d.x() * c.y() - d.y() * c.x() > 0) == (a < b) ? 1 : -1;
+      const auto [it, first] = edges.emplace(std::make_pair(std::min(a, b), std::max(a, b)), std::make_pair(&e, side));
+      if (first) continue;
+      if (it->second.second == side)
+        elementError(mesh, e, "overlaps " + located(*it->second.first) +
+                                  ": both lie on the same side of their common edge (a node "
+                                  "across an edge, or one element given twice); expected "
+                                  "neighbours on opposite sides of a shared edge");
+      if (it->second.second == 0)
+        elementError(mesh, e, "shares an edge with two other elements; expected at most two "
+                              "elements on an edge");
+      it->second.second = 0;  // both sides taken
+    }
   }
 }
 
@@ -445,6 +523,7 @@ Eigen::Vector2d tensionCenterFromClassical(const Eigen::Matrix4d& K) {
 
 SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions& opt) {
   checkMesh(mesh);
+  checkElementGeometry(mesh);
   const long nn = static_cast<long>(mesh.nodes.size());
   std::vector<std::vector<int>> element_nodes;
   element_nodes.reserve(mesh.elements.size());

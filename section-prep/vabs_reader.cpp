@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "common/input.h"
 #include "common/materials.h"
 
@@ -107,6 +109,37 @@ Matrix6d upperTriangle(const std::vector<double>& c) {
   return C;
 }
 
+// Two nodes at one place, both used by elements: the elements meeting there are not
+// joined (a crack), which silently softens the section. Unused nodes cannot matter.
+// "One place": within 1e-9 of the section's size (the decks use m, mm or inches).
+void checkCoincidentNodes(const TokenStream& ts, const SectionMesh& mesh,
+                          const std::vector<long>& node_id, const std::vector<int>& node_line) {
+  std::vector<char> used(mesh.nodes.size(), 0);
+  for (const SectionElement& e : mesh.elements)
+    for (int n : e.nodes)
+      if (n >= 0) used[n] = 1;
+  std::vector<long> order;
+  Eigen::AlignedBox2d box;
+  for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
+    if (used[i]) {
+      order.push_back(static_cast<long>(i));
+      box.extend(mesh.nodes[i]);
+    }
+  if (order.empty()) return;
+  const double tol = 1e-9 * box.sizes().maxCoeff();
+  std::sort(order.begin(), order.end(), [&](long a, long b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1; j < order.size() && mesh.nodes[order[j]].x() - mesh.nodes[order[i]].x() <= tol; ++j) {
+      if (std::abs(mesh.nodes[order[j]].y() - mesh.nodes[order[i]].y()) > tol) continue;
+      const long first = std::min(order[i], order[j]), second = std::max(order[i], order[j]);
+      ts.failAt(node_line[second], "node " + std::to_string(node_id[second]),
+                "is at the same place as node " + std::to_string(node_id[first]) + " (line " +
+                    std::to_string(node_line[first]) +
+                    "), and elements use both: they are not joined there; expected one node per "
+                    "place (merge them, or leave a gap to model a slit)");
+    }
+}
+
 }  // namespace
 
 Matrix6d orthotropicStiffness(double E1, double E2, double E3, double G12, double G13,
@@ -153,8 +186,11 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
   mesh.source_file = name;
   mesh.nodes.resize(nnode);
   std::map<long, long> node_index;
+  std::vector<long> node_id(nnode);
+  std::vector<int> node_line(nnode);
   for (long i = 0; i < nnode; ++i) {
     const auto v = ts.numbers(3, "node " + std::to_string(i + 1));
+    node_line[i] = ts.lastLine();
     const long id = static_cast<long>(v[0]);
     if (!node_index.emplace(id, i).second)
       ts.failAt(ts.lastLine(), "node " + std::to_string(id), "node number used twice");
@@ -165,6 +201,7 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
                 "coordinates beyond 1e4 length units from the origin; expected the section's "
                 "own coordinates");
     mesh.nodes[i] = Eigen::Vector2d(v[1], v[2]);
+    node_id[i] = id;
   }
 
   std::map<long, long> elem_index;
@@ -196,6 +233,8 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
       ts.failAt(line, "element " + std::to_string(el.user_id),
                 "a triangle (4th node 0) may have mid-side nodes in positions 5-7 only");
   }
+
+  checkCoincidentNodes(ts, mesh, node_id, node_line);
 
   // Orientation records. Material references are checked once materials are read.
   std::vector<long> layer_of(nelem, 0), material_id(nelem, 0);
