@@ -68,4 +68,20 @@ Eigen::Matrix<double, 6, 12> beamMidpointResultants(const Eigen::Vector3d& xa, c
   return UniformBeam(Ks, L).sectionForces(0.5 * L) * blockRotation(R);
 }
 
+Eigen::MatrixXd beamModalResultants(const Eigen::MatrixXd& nodes, const std::vector<std::array<long, 2>>& beams,
+                                    const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                                    const Eigen::MatrixXd& shapes) {
+  const long ne = static_cast<long>(beams.size());
+  Eigen::MatrixXd R(6 * ne, shapes.cols());
+  Eigen::MatrixXd q(12, shapes.cols());
+  for (long e = 0; e < ne; ++e) {
+    const auto& b = beams[static_cast<std::size_t>(e)];
+    q.topRows<6>() = shapes.middleRows<6>(6 * b[0]);
+    q.bottomRows<6>() = shapes.middleRows<6>(6 * b[1]);
+    R.middleRows<6>(6 * e) =
+        beamMidpointResultants(nodes.row(b[0]).transpose(), nodes.row(b[1]).transpose(), section_x2, Ks) * q;
+  }
+  return R;
+}
+
 }  // namespace fc::fe

@@ -4,6 +4,8 @@
 // torsion, bending about x2, bending about x3]) and 6x6 section mass matrix.
 // Degrees of freedom, 6 per node, in the BODY frame: [u1 u2 u3 theta1 theta2 theta3].
 #include <Eigen/Dense>
+#include <array>
+#include <vector>
 
 #include "common/materials.h"
 
@@ -33,5 +35,13 @@ BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
 // so they are exact for loads applied at the nodes; rigid motions give zero.
 Eigen::Matrix<double, 6, 12> beamMidpointResultants(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
                                                     const Eigen::Vector3d& section_x2, const Matrix6d& Ks);
+
+// The midpoint resultants of every beam element for every mode: nodes
+// (n_nodes, 3), shapes (6 n_nodes, n_modes) node-major as FlexBody::shapes.
+// Returns (6 n_beams, n_modes): row 6e + c is component c of element e per unit
+// modal coordinate (what fe-prep writes to /stress/section_resultants).
+Eigen::MatrixXd beamModalResultants(const Eigen::MatrixXd& nodes, const std::vector<std::array<long, 2>>& beams,
+                                    const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                                    const Eigen::MatrixXd& shapes);
 
 }  // namespace fc::fe
