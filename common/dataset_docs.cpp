@@ -73,6 +73,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
        "share of that static deflection the file's modes miss (6; 0 where the point is held)"},
       {"flexbody", "/invariants/*", "SI (see docs/body-file.md)",
        "inertia invariant of the floating-frame formulation, lumped-mass sums (docs/body-file.md)"},
+      {"flexbody", "/geometric_stiffness/matrices", "1/m, 1",
+       "modal geometric stiffness per unit inertial load case (12, n_modes, n_modes), cases in attribute `cases` "
+       "(docs/body-file.md, Geometric stiffness)"},
       // mbs-run
       {"results", "/time", "s", "output times"},
       {"results", "/bodies/*/position", "m", "body frame origin, global"},

@@ -11,6 +11,11 @@
 
 namespace fc {
 
+const std::array<const char*, kGeometricStiffnessCaseCount> kGeometricStiffnessCases = {
+    "a_x", "a_y", "a_z", "w_x w_x", "w_y w_y", "w_z w_z", "w_x w_y", "w_y w_z", "w_z w_x",
+    "alpha_x", "alpha_y", "alpha_z"};
+
+
 namespace {
 
 constexpr int kFormatVersion = 1;
@@ -121,6 +126,12 @@ void requireSizes(const FlexBody& b, const InertiaInvariants* inv, const std::st
   for (const auto& [type, conn] : b.elements)
     for (long i = 0; i < conn.size(); ++i)
       if (conn.data()[i] < 0 || conn.data()[i] >= n) bad("elements " + type + ": node index out of range");
+  if (!b.geometric_stiffness.empty()) {
+    if (static_cast<int>(b.geometric_stiffness.size()) != kGeometricStiffnessCaseCount)
+      bad("geometric_stiffness must hold " + str(kGeometricStiffnessCaseCount) + " load cases");
+    for (const auto& k : b.geometric_stiffness)
+      if (k.rows() != nm || k.cols() != nm) bad("geometric_stiffness matrices must be (" + str(nm) + ", " + str(nm) + ")");
+  }
   if (inv && inv->n_modes != nm)
     bad("invariants are for " + str(inv->n_modes) + " modes, the body has " + str(nm));
 }
@@ -221,6 +232,7 @@ void setRigidPropertiesFromLumpedMasses(FlexBody& body) {
   rigid.eigenvalues.resize(0);
   rigid.frequencies_hz.resize(0);
   rigid.interfaces.clear();
+  rigid.geometric_stiffness.clear();
   const InertiaInvariants inv = computeInertiaInvariants(rigid, 0);
   body.mass = inv.mass;
   body.center_of_mass = inv.centerOfMass();
@@ -316,6 +328,16 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
       const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> p = it.static_participation;
       writeArray(f, g + "/static_participation", {um, 6}, p.data());
     }
+  }
+
+  if (!body.geometric_stiffness.empty()) {
+    // (n_cases, nm, nm), C order; each matrix symmetric, so storage order is moot.
+    std::vector<double> g;
+    for (const auto& k : body.geometric_stiffness) g.insert(g.end(), k.data(), k.data() + k.size());
+    writeArray(f, "/geometric_stiffness/matrices", {static_cast<hsize_t>(kGeometricStiffnessCaseCount), um, um}, g.data());
+    std::string cases;
+    for (const char* c : kGeometricStiffnessCases) cases += (cases.empty() ? "" : ", ") + std::string(c);
+    f.setAttribute("/geometric_stiffness/matrices", "cases", cases);
   }
 
   // Invariants, mode index leading so that the first nm modes are a leading hyperslab.

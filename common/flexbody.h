@@ -51,6 +51,12 @@ struct FlexInterface {
   Eigen::VectorXd static_error;        // (6)
 };
 
+// The unit load cases of FlexBody::geometric_stiffness, in order (the load
+// parameters p of fe-prep/geometric_stiffness.h: frame origin acceleration minus
+// gravity, products of angular velocity, angular acceleration, all in body axes).
+constexpr int kGeometricStiffnessCaseCount = 12;
+extern const std::array<const char*, kGeometricStiffnessCaseCount> kGeometricStiffnessCases;
+
 struct FlexBody {
   std::string name;
   Eigen::MatrixXd nodes;                        // (n_nodes, 3) undeformed, body frame [m]
@@ -74,6 +80,10 @@ struct FlexBody {
   double exact_mass = 0.0;
   Eigen::Vector3d exact_center_of_mass = Eigen::Vector3d::Zero();
   Eigen::Matrix3d exact_inertia_tensor = Eigen::Matrix3d::Zero();
+  // fe-prep geometric_stiffness: true: per unit inertial load case (the 12 of
+  // fe-prep/geometric_stiffness.h, in that order) the modal geometric stiffness
+  // (n_modes, n_modes); written as /geometric_stiffness/matrices (docs/body-file.md).
+  std::vector<Eigen::MatrixXd> geometric_stiffness;
 
   long nodeCount() const { return static_cast<long>(nodes.rows()); }
   int modeCount() const { return static_cast<int>(eigenvalues.size()); }

@@ -172,7 +172,8 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
 
   const InputNode b = root["body"];
-  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction"});
+  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction",
+               "geometric_stiffness"});
   spec.name = b.string("name", "body");
   if (b.has("shell") == b.has("beam")) b.fail("expected exactly one of shell: or beam:");
   if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
@@ -293,6 +294,16 @@ BodySpec parseBodySpec(const InputNode& root) {
     b["modes"].fail("static_error needs a reference that holds the body (reference: {clamp: [...]}): a free body has no static deflection");
   if (spec.craig_bampton && spec.reference.empty())
     b["reduction"].fail("craig_bampton needs its boundary in reference: (clamp: or pin: the interfaces where the body is joined)");
+  if (b.has("geometric_stiffness")) {
+    spec.geometric_stiffness_node = b["geometric_stiffness"];
+    spec.geometric_stiffness = b["geometric_stiffness"].asBool();
+    if (spec.geometric_stiffness && spec.shell)
+      b["geometric_stiffness"].fail("geometric stiffness is implemented for beam bodies only (the shells' membrane-stress "
+                                    "geometric stiffness is not); remove the key or model the body as a beam");
+    if (spec.geometric_stiffness && spec.reference.empty())
+      b["geometric_stiffness"].fail("geometric stiffness needs a reference that holds the body (reference: {clamp: [...]}): "
+                                    "the stress of the inertial loads is the static response of the held body");
+  }
   return spec;
 }
 

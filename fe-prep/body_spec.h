@@ -75,6 +75,10 @@ struct BodySpec {
   // reduction: craig_bampton: constraint modes of the boundary (the reference
   // conditions) plus `modes` fixed-interface modes, diagonalised (craig_bampton.h).
   bool craig_bampton = false;
+  // geometric_stiffness: true: the modal geometric stiffness of the unit inertial
+  // load cases (geometric_stiffness.h), for mbs-run's geometric_stiffening.
+  bool geometric_stiffness = false;
+  InputNode geometric_stiffness_node;
   std::vector<std::string> input_files;  // the YAML and every file it uses (for the SHA-256)
 };
 

@@ -16,6 +16,7 @@
 #include "fe-prep/beam_mesher.h"
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/craig_bampton.h"
+#include "fe-prep/geometric_stiffness.h"
 #include "fe-prep/interfaces.h"
 #include "fe-prep/reference_conditions.h"
 #include "fe-prep/static_response.h"
@@ -464,6 +465,13 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes";
   }
   body.frequencies_hz = body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
+  if (spec.geometric_stiffness) {
+    // The stress of the inertial loads is the static response of the held body.
+    if (rigid.cols() > 0)
+      spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
+    body.geometric_stiffness =
+        modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, kSectionX2, spec.beam->Ks, body.shapes);
+  }
   for (std::size_t k = 0; k < body.interfaces.size(); ++k) {
     body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);
     if (static_check) {

@@ -1,0 +1,66 @@
+#pragma once
+// Modal geometric stiffness of the body's inertial load cases (issue 15;
+// docs/body-file.md "Geometric stiffness" for the derivation and sources).
+//
+// A body whose frame moves with origin acceleration a0 (body axes, gravity
+// folded in as a0 - g), angular velocity omega and angular acceleration alpha
+// (body axes) carries at node k (undeformed position s_k, lumped mass m_k) the
+// inertial load f_k = -m_k (a0 + alpha x s_k + omega x (omega x s_k)), linear in
+// the 12 load parameters
+//   p = [a0_x a0_y a0_z, w_x^2 w_y^2 w_z^2, w_x w_y, w_y w_z, w_z w_x, alpha_x alpha_y alpha_z]
+// (omega x (omega x s) = omega (omega . s) - s |omega|^2: the case w_x^2 is the
+// acceleration (0, -s_y, -s_z), the case w_x w_y is (s_y, s_x, 0)). For each unit
+// case c fe-prep solves the static response of the body held by its reference
+// condition, K u_c = f_c, takes the stress state it causes (beams: the axial
+// force N_e = axial end force of K_e u_e), and projects the element geometric
+// stiffness of that stress state on the modes: K_c = Phi^T K_G(sigma_c) Phi.
+// mbs-run adds sum_c p_c(t) K_c to the modal stiffness (mbs-run/flexible/
+// geometric_stiffening.h). This is SIMPACK's first-order SID term (Wallrapp,
+// Nonlinear Dyn. 5 (1994) 451: the geometric stiffness of unit inertia loads)
+// and MBDyn's modal stress-stiffening per load case.
+#include <mpi.h>
+#include <petscmat.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "common/flexbody.h"
+#include "common/materials.h"
+#include "fe-prep/mesh.h"
+#include "fe-prep/reference_conditions.h"
+
+namespace fc::feprep {
+
+// The cases in the file's order: fc::kGeometricStiffnessCases (common/flexbody.h).
+constexpr int kInertialCases = kGeometricStiffnessCaseCount;
+
+// Unit-case accelerations of a material point at s (3, kInertialCases): column c
+// is the acceleration that unit p_c gives it.
+Eigen::Matrix<double, 3, kInertialCases> inertialCaseAccelerations(const Eigen::Vector3d& s);
+
+// Nodal loads (6 n, kInertialCases) of the unit cases on the lumped translational
+// masses (lumped: 6 n, as the assembly's; the rotary inertias' moments bend
+// only, they do not load a beam axially, and are left out).
+Eigen::MatrixXd inertialLoadCases(const Eigen::MatrixXd& nodes, const Eigen::VectorXd& lumped);
+
+// Axial force of every beam element (n_beams, n_cases) under the nodal
+// displacements u (6 n, n_cases).
+Eigen::MatrixXd beamAxialForces(const Mesh& mesh, const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
+                                const Eigen::MatrixXd& u);
+
+// K_c = Phi^T K_G(N_c) Phi for each column of axial forces (n_beams, n_cases);
+// shapes: (6 n, n_modes). Returns n_cases symmetric (n_modes, n_modes) matrices.
+std::vector<Eigen::MatrixXd> projectBeamGeometricStiffness(const Mesh& mesh, const Eigen::Vector3d& section_x2,
+                                                           const Matrix6d& Ks, const Eigen::MatrixXd& axial,
+                                                           const Eigen::MatrixXd& shapes);
+
+// The whole step for a beam body: unit inertial cases on the lumped masses,
+// static solve with the reference-held stiffness K (map), axial forces,
+// projection on the shapes (6 n, n_modes).
+std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+                                                     const Eigen::VectorXd& lumped, const Eigen::Vector3d& section_x2,
+                                                     const Matrix6d& Ks, const Eigen::MatrixXd& shapes);
+
+}  // namespace fc::feprep

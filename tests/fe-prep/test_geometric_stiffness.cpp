@@ -1,0 +1,164 @@
+// Geometric stiffness of fe-prep (issue 15): the beam element's geometric
+// stiffness against Euler's buckling load, the inertial load cases' axial forces
+// against statics, and the modal data of a cantilever spinning about its root
+// against an independent rotating-beam eigen-analysis and published tables.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "../mbs-run/rotating_beam_reference.h"
+#include "common/flexbody.h"
+#include "fe-prep/elements/beam_element.h"
+#include "fe-prep/elements/beam_geometric_stiffness.h"
+#include "fe-prep/geometric_stiffness.h"
+#include "fe-prep/body_spec.h"
+#include "feprep_test_support.h"
+
+namespace fc::feprep::test {
+namespace {
+
+// Section of a steel rod, closed forms (sections.h).
+const double kE = 210e9, kNu = 0.3, kRho = 7850, kD = 0.02;
+
+TEST(GeometricStiffness, CantileverBucklesAtEulersLoad) {
+  // Cantilever column of n elements along x under compression P: det(K - P K_G1) = 0
+  // at P_cr = pi^2 EI / (4 L^2) (Euler; Timoshenko & Gere, Theory of Elastic
+  // Stability, sec. 2.1). Shear lowers it by P_cr/(kGA) (Engesser) ~ 1e-5 here.
+  const SectionMatrices s = solidCircleSection(kD, kE, kNu, kRho);
+  const double L = 2.0, EI = kE * M_PI * std::pow(kD, 4) / 64;
+  const int n = 20;
+  const int nd = 6 * (n + 1);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd), G = Eigen::MatrixXd::Zero(nd, nd);
+  for (int e = 0; e < n; ++e) {
+    const Eigen::Vector3d a(L * e / n, 0, 0), b(L * (e + 1) / n, 0, 0);
+    K.block<12, 12>(6 * e, 6 * e) += fe::timoshenkoBeam(a, b, Eigen::Vector3d::UnitY(), s.K, s.M).K;
+    G.block<12, 12>(6 * e, 6 * e) += fe::beamGeometricStiffness(a, b, Eigen::Vector3d::UnitY(), s.K, -1.0);
+  }
+  // Clamp node 0; buckling: K x = P (-G) x, smallest P.
+  const Eigen::MatrixXd Kr = K.bottomRightCorner(nd - 6, nd - 6), Gr = -G.bottomRightCorner(nd - 6, nd - 6);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Gr + 1e-12 * Eigen::MatrixXd::Identity(nd - 6, nd - 6) * Gr.norm(), Kr);
+  // Largest 1/P of Gr x = (1/P) K x.
+  const double Pcr = 1.0 / es.eigenvalues().maxCoeff();
+  const double euler = M_PI * M_PI * EI / (4 * L * L);
+  std::printf("[   info   ] cantilever buckling load %.6e N, Euler %.6e N\n", Pcr, euler);
+  // Consistent geometric stiffness: O(h^4) from above (Hermite cubics), 20
+  // elements ~1e-7; shear (Engesser) ~1e-5 below; the regularisation 1e-12.
+  EXPECT_NEAR(Pcr / euler, 1.0, 1e-4);
+  // Both bending planes buckle at the same load (the rod is round): the second
+  // largest 1/P is the other plane's (the signs of the th2 plane are right).
+  const Eigen::VectorXd ev = es.eigenvalues();
+  EXPECT_NEAR(ev(ev.size() - 2) / ev(ev.size() - 1), 1.0, 1e-9);
+}
+
+TEST(GeometricStiffness, InertialCasesAreRigidBodyAccelerations) {
+  // omega x (omega x s) + alpha x s + a0 rebuilt from the unit cases for a random state.
+  const Eigen::Vector3d s(0.3, -1.2, 0.7), w(0.4, -2.0, 1.3), al(0.2, 0.5, -0.9), a0(1.0, -2.0, 3.0);
+  Eigen::Matrix<double, kInertialCases, 1> p;
+  p << a0, w.x() * w.x(), w.y() * w.y(), w.z() * w.z(), w.x() * w.y(), w.y() * w.z(), w.z() * w.x(), al;
+  const Eigen::Vector3d exact = a0 + al.cross(s) + w.cross(w.cross(s));
+  EXPECT_LT((inertialCaseAccelerations(s) * p - exact).norm(), 1e-14 * exact.norm());
+}
+
+std::string spinningRod(int elements, int modes) {
+  return R"(
+materials:
+  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
+body:
+  name: rod
+  beam: {length: 2.0, elements: )" + std::to_string(elements) + R"(, section: {shape: solid_circle, diameter: 0.02, material: steel}}
+  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}
+  reference: {clamp: [root]}
+  mass: lumped
+  geometric_stiffness: true
+  modes: )" + std::to_string(modes) + "\n";
+}
+
+TEST(GeometricStiffness, SpinningCantileverFlapFrequenciesMatchRotatingBeamTheory) {
+  const BuildResult r = runYaml(spinningRod(40, 6));
+  const FlexBody& b = r.body;
+  ASSERT_EQ(static_cast<int>(b.geometric_stiffness.size()), kInertialCases);
+  const double L = 2.0, A = M_PI * kD * kD / 4, rhoA = kRho * A, EI = kE * M_PI * std::pow(kD, 4) / 64;
+  const double w0 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  for (const auto& k : b.geometric_stiffness) EXPECT_LT((k - k.transpose()).norm(), 1e-12 * (1 + k.norm()));
+  // Spin Omega about the z axis through the root (x = -L/2): the frame origin (the
+  // rod's centre) accelerates by -Omega^2 L/2 along x, so p = [a_x = -Omega^2 L/2,
+  // w_z w_z = Omega^2]. The flapwise (z) modal stiffness is Lambda + K_G (no
+  // centrifugal softening out of the plane of rotation); the round rod's y modes
+  // get the same K_G, so the eigenvalues come in equal pairs.
+  for (double ratio : {1.0, 2.0}) {
+    const double Om = ratio * w0;
+    Eigen::MatrixXd Kt = b.eigenvalues.asDiagonal();
+    Kt += Om * Om * (b.geometric_stiffness[5] - 0.5 * L * b.geometric_stiffness[0]);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Kt);
+    const Eigen::VectorXd f = es.eigenvalues().cwiseSqrt();
+    const Eigen::VectorXd ref = fc::test::rotatingBeamFrequencies(L, EI, rhoA, Om, false, 80, 2);
+    std::printf("[   info   ] Omega = %.0f omega_0: flap 1 %.5f (reference %.5f), flap 2 %.5f (reference %.5f) rad/s\n",
+                ratio, f(0), ref(0), f(2), ref(1));
+    // 40 elements with lumped masses: frequencies O(h^2) low (measured 4e-4 at
+    // Omega = 0 for mode 1) plus shear/rotary inertia (r/L = 0.005: ~1e-4) and 6 modes'
+    // truncation of the stiffened shape (~1e-4): 2e-3 for mode 1, 5e-3 for mode 2
+    // (its h^2 error is 6 times larger). The issue asks for 1 %.
+    EXPECT_NEAR(f(0) / ref(0), 1.0, 2e-3);
+    EXPECT_NEAR(f(1) / ref(0), 1.0, 2e-3);
+    EXPECT_NEAR(f(2) / ref(1), 1.0, 5e-3);
+  }
+}
+
+TEST(GeometricStiffness, RotatingBeamReferenceMatchesPublishedTables) {
+  // The reference of these tests against the published flapwise values, in
+  // omega / sqrt(EI / (rho A L^4)) at the nondimensional speed
+  // Omega sqrt(rho A L^4 / EI) = 0, 1, 2, 3, 4: 3.5160, 3.6816, 4.1373, 4.7973,
+  // 5.5850 (mode 1) and 22.0345, 22.1810, 22.6149, 23.3203, 24.2734 (mode 2)
+  // (Wright et al. 1982, table 1; Hodges & Rutkowski 1981; reproduced in
+  // Banerjee, J. Sound Vib. 233 (2000) 857, table 1). They are given to 5
+  // digits: 3e-5 relative.
+  const double m1[5] = {3.5160, 3.6816, 4.1373, 4.7973, 5.5850};
+  const double m2[5] = {22.0345, 22.1810, 22.6149, 23.3203, 24.2734};
+  for (int k = 0; k < 5; ++k) {
+    const Eigen::VectorXd f = fc::test::rotatingBeamFrequencies(1.0, 1.0, 1.0, k, false, 60, 2);
+    EXPECT_NEAR(f(0), m1[k], 3e-4) << "speed " << k;
+    EXPECT_NEAR(f(1), m2[k], 2e-3) << "speed " << k;
+    // Lead-lag: the same operator minus Omega^2 M, so omega_lag^2 = omega_flap^2 - Omega^2
+    // exactly; the dense generalized eigen-solver's rounding on K (condition ~1e9
+    // with 60 Hermite elements) is ~1e-8 relative.
+    const Eigen::VectorXd g = fc::test::rotatingBeamFrequencies(1.0, 1.0, 1.0, k, true, 60, 2);
+    EXPECT_NEAR(g(0) * g(0), f(0) * f(0) - k * k, 1e-7 * f(0) * f(0));
+  }
+  // Southwell's slope: omega^2 = omega_0^2 + K Omega^2 as Omega -> 0, K = 1.193
+  // (flap) and 0.193 (lag) for the first mode.
+  const double w0 = fc::test::rotatingBeamFrequencies(1.0, 1.0, 1.0, 0.0, false, 60, 1)(0);
+  // eps = 0.1: the slope's own change (K at speed 1 is 1.192) is ~1e-5 there, the
+  // eigenvalues' rounding (1e-8 of 12.4) over eps^2 ~1e-5 too.
+  const double eps = 0.1;
+  const double kf = (std::pow(fc::test::rotatingBeamFrequencies(1.0, 1.0, 1.0, eps, false, 60, 1)(0), 2) - w0 * w0) / (eps * eps);
+  const double kl = (std::pow(fc::test::rotatingBeamFrequencies(1.0, 1.0, 1.0, eps, true, 60, 1)(0), 2) - w0 * w0) / (eps * eps);
+  std::printf("[   info   ] Southwell coefficients flap %.4f, lag %.4f\n", kf, kl);
+  // Quoted to 3 decimals.
+  EXPECT_NEAR(kf, 1.193, 5e-4);
+  EXPECT_NEAR(kl, 0.193, 5e-4);
+}
+
+TEST(GeometricStiffness, KeyErrors) {
+  try {
+    runYaml(R"(
+materials:
+  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
+body:
+  name: rod
+  beam: {length: 2.0, elements: 4, section: {shape: solid_circle, diameter: 0.02, material: steel}}
+  modes: 2
+  geometric_stiffness: true
+)");
+    ADD_FAILURE() << "a free body with geometric_stiffness was accepted";
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("<test>:8"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("geometric_stiffness"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("reference"), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+}  // namespace fc::feprep::test
