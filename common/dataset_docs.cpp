@@ -84,6 +84,8 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"results", "/bodies/*/angular_velocity", "rad/s", "angular velocity of the body frame, global"},
       {"results", "/bodies/*/modal_coordinates", "kg^1/2 m", "modal coordinates of a flexible body"},
       {"results", "/bodies/*/modal_velocities", "kg^1/2 m/s", "modal velocities of a flexible body"},
+      {"results", "/bodies/*/modal_energy", "J", "energy of each mode, 1/2 omega^2 q^2 + 1/2 qdot^2"},
+      {"results", "/bodies/*/modal_energy_peak", "J", "each mode's largest modal_energy over the run"},
       {"results", "/joints/*/angle", "rad",
        "revolute angle: rotation of the second body relative to the first about the axis, unwrapped"},
       {"results", "/joints/*/reaction_force", "N", "joint reaction force on the first body, global"},

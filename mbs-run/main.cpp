@@ -77,6 +77,19 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
   printPeak("reaction force", r.peak_reaction_force, "N");
   printPeak("reaction torque", r.peak_reaction_torque, "N m");
   printPeak("modal coordinate", r.peak_modal_coordinate, "kg^1/2 m");
+  for (std::size_t k = 0; k < m.bodies.size() && k < r.peak_modal_energy.size(); ++k) {
+    const Eigen::VectorXd& e = r.peak_modal_energy[k];
+    if (e.size() == 0) continue;
+    int top = 0;
+    const double share = fc::mbs::highestModesEnergyShare(e, &top);
+    Eigen::Index biggest = 0;
+    e.maxCoeff(&biggest);
+    std::printf("  modal energy %s: the highest %d of %ld modes carry %.3g %% of the summed per-mode peaks "
+                "(%.4g J); mode %ld peaks highest (%.4g J)%s\n",
+                m.bodies[k].name.c_str(), top, static_cast<long>(e.size()), 100 * share, e.sum(),
+                static_cast<long>(biggest) + 1, e(biggest),
+                share > 0.05 ? ": the highest kept modes are excited, try more modes" : "");
+  }
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
   for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.smallest_distance.size(); ++k)

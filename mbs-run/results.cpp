@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "common/files.h"
+#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/flexible/modal.h"
 
 namespace fc::mbs {
 
@@ -45,6 +47,11 @@ std::vector<Channel> resultChannels(const Model& m) {
                    }});
       c.push_back({b + "modal_velocities", nm, false, [k, nm](const Sample& s, double* out) {
                      for (int i = 0; i < nm; ++i) out[i] = s.bodies[k].modal_rate[i];
+                   }});
+      const ModalProperties modal = m.bodies[k].flex->modal;
+      c.push_back({b + "modal_energy", nm, false, [k, nm, modal](const Sample& s, double* out) {
+                     const Eigen::VectorXd e = modalEnergies(modal, s.bodies[k].modal, s.bodies[k].modal_rate);
+                     for (int i = 0; i < nm; ++i) out[i] = e[i];
                    }});
     }
   }
@@ -206,6 +213,14 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     for (std::size_t k = 0; k < imp.size(); ++k)
       for (int c = 0; c < 5; ++c) m(k, c) = imp[k][c];
     f.writeMatrix("/joints/" + model.joints[j].name + "/limit_impacts", m);
+  }
+  // Which modes the run excited: each mode's peak energy, and the share of the
+  // highest quarter of the kept modes (run_summary.h).
+  for (std::size_t k = 0; k < model.bodies.size() && k < r.peak_modal_energy.size(); ++k) {
+    if (r.peak_modal_energy[k].size() == 0) continue;
+    const std::string g = "/bodies/" + model.bodies[k].name;
+    f.writeVector(g + "/modal_energy_peak", r.peak_modal_energy[k]);
+    f.setAttribute(g, "highest_modes_energy_share", highestModesEnergyShare(r.peak_modal_energy[k]));
   }
   // Contact monitor summary: the smallest distance of each pair and when.
   for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.smallest_distance.size(); ++k) {

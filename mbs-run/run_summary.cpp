@@ -3,6 +3,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/flexible/modal.h"
+
 namespace fc::mbs {
 
 namespace {
@@ -24,12 +27,29 @@ void RunSummary::observe(const Model& m, const Sample& s) {
     for (Eigen::Index i = 0; i < s.bodies[k].modal.size(); ++i)
       raise(peak_modal_coordinate, std::abs(s.bodies[k].modal[i]), s.time,
             m.bodies[k].name + " mode " + std::to_string(i + 1));
+  if (peak_modal_energy.size() != s.bodies.size()) {
+    peak_modal_energy.assign(s.bodies.size(), Eigen::VectorXd());
+    for (std::size_t k = 0; k < s.bodies.size(); ++k)
+      peak_modal_energy[k] = Eigen::VectorXd::Zero(m.bodies[k].flex ? m.bodies[k].modes : 0);
+  }
+  for (std::size_t k = 0; k < s.bodies.size(); ++k)
+    if (m.bodies[k].flex && m.bodies[k].modes > 0)
+      peak_modal_energy[k] = peak_modal_energy[k].cwiseMax(
+          modalEnergies(m.bodies[k].flex->modal, s.bodies[k].modal, s.bodies[k].modal_rate));
   if (smallest_distance.size() != s.distances.size())
     smallest_distance.assign(s.distances.size(), Peak{std::numeric_limits<double>::infinity(), 0.0, ""});
   for (std::size_t k = 0; k < s.distances.size(); ++k)
     if (s.distances[k] < smallest_distance[k].value) smallest_distance[k] = {s.distances[k], s.time, ""};
   energy_scale = std::max({energy_scale, std::abs(s.energy.kinetic), std::abs(s.energy.potential), s.energy.dissipated});
   for (const BodySample& b : s.bodies) length_scale = std::max(length_scale, b.position.norm());
+}
+
+double highestModesEnergyShare(const Eigen::VectorXd& peaks, int* count) {
+  const long n = peaks.size();
+  const long top = n == 0 ? 0 : std::max<long>(1, (n + 3) / 4);
+  if (count) *count = static_cast<int>(top);
+  const double total = peaks.sum();
+  return total > 0 ? peaks.tail(top).sum() / total : 0.0;
 }
 
 std::string timeLabel(double t) {

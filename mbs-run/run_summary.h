@@ -36,6 +36,9 @@ struct RunSummary {
     std::string where;
   };
   Peak peak_reaction_force, peak_reaction_torque, peak_violation, peak_modal_coordinate;
+  // Peak over the output rows of each mode's energy (modalEnergies), per body
+  // (empty for rigid bodies): which modes the run excited (issue 16).
+  std::vector<Eigen::VectorXd> peak_modal_energy;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes
@@ -43,6 +46,12 @@ struct RunSummary {
   // Folds one output row into the statistics (joint and body names from the model).
   void observe(const Model& m, const Sample& s);
 };
+
+// The share of the summed per-mode peak energies carried by the highest
+// quarter of the kept modes (at least one mode): near 0 when the cut left
+// nothing excited above it, large when the highest kept modes matter and more
+// may be needed. `count` receives how many modes that quarter holds.
+double highestModesEnergyShare(const Eigen::VectorXd& peaks, int* count = nullptr);
 
 // "t=...:" prefix of the event and integrator logs.
 std::string timeLabel(double t);

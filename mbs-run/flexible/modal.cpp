@@ -31,6 +31,10 @@ double strainEnergy(const ModalProperties& p, const Eigen::VectorXd& w) {
   return 0.5 * w.dot(p.stiffness.cwiseProduct(w));
 }
 
+Eigen::VectorXd modalEnergies(const ModalProperties& p, const Eigen::VectorXd& w, const Eigen::VectorXd& wdot) {
+  return 0.5 * (p.stiffness.cwiseProduct(w.cwiseAbs2()) + wdot.cwiseAbs2());
+}
+
 double dissipatedPower(const ModalProperties& p, const Eigen::VectorXd& wdot) {
   return wdot.dot(p.damping.cwiseProduct(wdot));
 }
