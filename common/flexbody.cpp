@@ -275,6 +275,42 @@ std::string flexBodyPhysicalProblem(const FlexBody& body) {
   return "";
 }
 
+namespace {
+
+long n_elements(const FlexBody& b) {
+  long n = 0;
+  for (const auto& kv : b.elements) n += kv.second.rows();
+  return n;
+}
+
+// /mesh/centroids and, for shells, /stress/strains and /stress/plies/*
+// (docs/body-file.md, "Stress recovery data").
+void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) {
+  const std::string where = f.path() + ": stress recovery data: ";
+  if (d.centroids.rows() != n_el || d.centroids.cols() != 3)
+    throw std::invalid_argument(where + "centroids must be (n_elements, 3) = (" + str(n_el) + ", 3)");
+  f.writeMatrix("/mesh/centroids", d.centroids);
+  if (!d.hasShell()) return;
+  const long np = d.plies.size();
+  if (d.shell_strains.rows() != 6 * n_el || d.shell_strains.cols() != nm)
+    throw std::invalid_argument(where + "shell strains must be (6 n_elements, n_modes)");
+  if (d.plies.angle_deg.size() != np || static_cast<long>(d.plies.stiffness.size()) != np ||
+      (d.plies.strength.rows() != 0 && d.plies.strength.rows() != np))
+    throw std::invalid_argument(where + "the ply table's columns differ in length");
+  // Column-major (6 n_el, nm) is C-order (nm, n_el, 6), as /modes/shapes.
+  writeArray(f, "/stress/strains", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_el), 6}, d.shell_strains.data());
+  f.writeVector("/stress/plies/z_mid", d.plies.z_mid);
+  f.writeVector("/stress/plies/angle_deg", d.plies.angle_deg);
+  std::vector<double> q;
+  for (const Eigen::Matrix3d& Q : d.plies.stiffness)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) q.push_back(Q(i, j));
+  writeArray(f, "/stress/plies/stiffness", {static_cast<hsize_t>(np), 3, 3}, q.data());
+  if (d.plies.hasStrength()) f.writeMatrix("/stress/plies/strength", d.plies.strength);
+}
+
+}  // namespace
+
 void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaInvariants& inv,
                    const Provenance& prov) {
   try {
@@ -359,6 +395,7 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   writeArray(f, "/invariants/rotary_modal", {um, 3}, jt.data());
   const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jtt = inv.rotary_modal_mass;
   writeArray(f, "/invariants/rotary_modal_mass", {um, um}, jtt.data());
+  if (!body.stress.empty()) writeStressData(f, body.stress, n_elements(body), nm);
   writer.commit();
 }
 
@@ -460,7 +497,7 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
     const long n = b.nodes.rows();
     const hsize_t un = static_cast<hsize_t>(n);
     for (const std::string& child : f.children("/mesh")) {
-      if (child == "nodes") continue;
+      if (child == "nodes" || child == "centroids") continue;  // connectivity only
       const std::vector<hsize_t> sh = f.shape("/mesh/" + child);
       const std::vector<long> flat = f.readIntVector("/mesh/" + child);
       const long cols = sh.size() == 2 ? static_cast<long>(sh[1]) : 1;
@@ -471,6 +508,41 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
     b.shapes = Eigen::Map<const Eigen::MatrixXd>(sh.data(), 6 * n, nm);
   }
   return out;
+}
+
+StressRecoveryData readStressData(const std::string& path, int n_modes) {
+  H5File f(path, H5File::Mode::Read);
+  f.checkFormat("flexbody", kFormatVersion);
+  const int in_file = modeCount(f);
+  if (n_modes < 0 || n_modes > in_file)
+    throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
+                  " asked");
+  if (!f.exists("/mesh/centroids") || !f.exists("/stress/strains"))
+    throw H5Error(path + ": no shell stress recovery data (/mesh/centroids, /stress/strains); a shell body file "
+                  "written by this fe-prep has them (rebuild it)");
+  StressRecoveryData d;
+  const std::vector<hsize_t> cs = f.shape("/mesh/centroids");
+  if (cs.size() != 2 || cs[1] != 3) throw H5Error(path + ": /mesh/centroids must be (n_elements, 3), got " + dimsText(cs));
+  const long ne = static_cast<long>(cs[0]);
+  d.centroids = rowMajor(readLeading(f, "/mesh/centroids", {cs[0], 3}, {true, true}), ne, 3);
+  const hsize_t um = static_cast<hsize_t>(n_modes);
+  const std::vector<double> st = readLeading(f, "/stress/strains", {um, cs[0], 6}, {false, true, true});
+  d.shell_strains = Eigen::Map<const Eigen::MatrixXd>(st.data(), 6 * ne, n_modes);
+  const std::vector<hsize_t> zs = f.shape("/stress/plies/z_mid");
+  if (zs.size() != 1 || zs[0] == 0) throw H5Error(path + ": /stress/plies/z_mid must be (n_plies), n_plies > 0");
+  const hsize_t np = zs[0];
+  const std::vector<double> z = readLeading(f, "/stress/plies/z_mid", {np}, {true});
+  const std::vector<double> a = readLeading(f, "/stress/plies/angle_deg", {np}, {true});
+  const std::vector<double> q = readLeading(f, "/stress/plies/stiffness", {np, 3, 3}, {true, true, true});
+  d.plies.z_mid = Eigen::Map<const Eigen::VectorXd>(z.data(), static_cast<long>(np));
+  d.plies.angle_deg = Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<long>(np));
+  for (hsize_t k = 0; k < np; ++k) d.plies.stiffness.push_back(rowMajor(std::vector<double>(q.begin() + 9 * k, q.begin() + 9 * k + 9), 3, 3));
+  if (f.exists("/stress/plies/strength")) {
+    d.plies.strength = rowMajor(readLeading(f, "/stress/plies/strength", {np, 5}, {true, true}), static_cast<long>(np), 5);
+    if ((d.plies.strength.array() <= 0).any())
+      throw H5Error(path + ": /stress/plies/strength holds a non-positive strength");
+  }
+  return d;
 }
 
 }  // namespace fc

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "common/stress_data.h"
+
 namespace fc {
 
 using IndexMatrix = Eigen::Matrix<long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -84,6 +86,9 @@ struct FlexBody {
   // fe-prep/geometric_stiffness.h, in that order) the modal geometric stiffness
   // (n_modes, n_modes); written as /geometric_stiffness/matrices (docs/body-file.md).
   std::vector<Eigen::MatrixXd> geometric_stiffness;
+  // Stress recovery data (/mesh/centroids, /stress/): written when not empty,
+  // never read by readFlexBody (mbs-run reads it with readStressData when asked).
+  StressRecoveryData stress;
 
   long nodeCount() const { return static_cast<long>(nodes.rows()); }
   int modeCount() const { return static_cast<int>(eigenvalues.size()); }
@@ -159,5 +164,12 @@ int flexBodyModeCount(const std::string& path);
 // or mis-shaped dataset.
 FlexBodyFile readFlexBody(const std::string& path, int n_modes = -1,
                           FlexBodyParts parts = FlexBodyParts::Dynamics);
+
+// The stress recovery data of a body file for its first n_modes modes:
+// /mesh/centroids, and for shells /stress/strains (leading n_modes only) and
+// /stress/plies/*. H5Error naming the file when it has none (written before
+// stress recovery existed, or a beam's file read for shells) or when a
+// dataset is mis-shaped or not finite.
+StressRecoveryData readStressData(const std::string& path, int n_modes);
 
 }  // namespace fc

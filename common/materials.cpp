@@ -61,7 +61,29 @@ void requirePositiveDefinite(const std::string& name, const Matrix6d& C) {
   }
 }
 
+// Strengths: from soft foams (~1e5 Pa) to carbon fibre (~7e9 Pa, the
+// strongest fibres), with room either side; the floor 1e4 Pa lies above every
+// strength typed in MPa (at most a few thousand), the unit mistake that would
+// make every failure index absurd.
+constexpr double kStrengthMin = 1e4, kStrengthMax = 1e11;
+
 }  // namespace
+
+PlyStrength readStrength(const InputNode& s) {
+  s.allowKeys({"Xt", "Xc", "Yt", "Yc", "S12"});
+  PlyStrength out;
+  const std::pair<const char*, double*> keys[] = {
+      {"Xt", &out.Xt}, {"Xc", &out.Xc}, {"Yt", &out.Yt}, {"Yc", &out.Yc}, {"S12", &out.S12}};
+  for (const auto& [key, value] : keys) {
+    const InputNode v = s[key];  // missing: located error naming the key
+    *value = v.asPositive();
+    if (*value < kStrengthMin || *value > kStrengthMax)
+      v.fail("strength " + std::string(key) + " = " + num(*value) + " Pa is outside the physical range [" +
+             num(kStrengthMin) + ", " + num(kStrengthMax) +
+             "] Pa (SI units: a strength in MPa is e6 Pa; compression strengths are positive magnitudes)");
+  }
+  return out;
+}
 
 Matrix6d orthotropicCompliance(double E1, double E2, double E3, double G12, double G13,
                                double G23, double nu12, double nu13, double nu23) {
@@ -159,19 +181,19 @@ MaterialLibrary readMaterials(const InputNode& block) {
     const std::string type = node["type"].asString();
     try {
       if (type == "isotropic") {
-        node.allowKeys({"type", "E", "nu", "rho"});
+        node.allowKeys({"type", "E", "nu", "rho", "strength"});
         lib[name] = makeIsotropic(name, node["E"].asPositive(), node["nu"].asDouble(),
                                   node["rho"].asPositive());
       } else if (type == "orthotropic") {
         node.allowKeys({"type", "E1", "E2", "E3", "G12", "G13", "G23", "nu12", "nu13", "nu23",
-                        "rho"});
+                        "rho", "strength"});
         lib[name] = makeOrthotropic(
             name, node["E1"].asPositive(), node["E2"].asPositive(), node["E3"].asPositive(),
             node["G12"].asPositive(), node["G13"].asPositive(), node["G23"].asPositive(),
             node["nu12"].asDouble(), node["nu13"].asDouble(), node["nu23"].asDouble(),
             node["rho"].asPositive());
       } else if (type == "anisotropic") {
-        node.allowKeys({"type", "C", "rho"});
+        node.allowKeys({"type", "C", "rho", "strength"});
         lib[name] = makeAnisotropic(name, node["C"].asMatrix(6, 6), node["rho"].asPositive());
       } else {
         node["type"].fail("unknown material type '" + type +
@@ -180,6 +202,7 @@ MaterialLibrary readMaterials(const InputNode& block) {
     } catch (const std::invalid_argument& e) {
       node.fail(e.what());
     }
+    if (node.has("strength")) lib[name].strength = readStrength(node["strength"]);
   }
   return lib;
 }

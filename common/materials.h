@@ -3,6 +3,7 @@
 // with engineering shear strains (gamma = 2 eps), as VABS and most FE codes.
 #include <Eigen/Dense>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "common/input.h"
@@ -10,6 +11,13 @@
 namespace fc {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// Ply strengths for failure indices (contracts.md `strength: {Xt, Xc, Yt, Yc, S12}`),
+// all positive magnitudes in Pa: tension and compression along the fibre (1) and
+// across it (2), and in-plane shear (12).
+struct PlyStrength {
+  double Xt = 0, Xc = 0, Yt = 0, Yc = 0, S12 = 0;
+};
 
 struct Material {
   enum class Kind { Isotropic, Orthotropic, Anisotropic };
@@ -19,6 +27,7 @@ struct Material {
   Matrix6d C = Matrix6d::Zero();  // stiffness in material axes
   // Engineering constants (isotropic and orthotropic; NaN for anisotropic).
   double E1 = 0, E2 = 0, E3 = 0, G12 = 0, G13 = 0, G23 = 0, nu12 = 0, nu13 = 0, nu23 = 0;
+  std::optional<PlyStrength> strength;  // `strength:` key, when given
 
   Matrix6d compliance() const { return C.inverse(); }
 };
@@ -43,7 +52,11 @@ using MaterialLibrary = std::map<std::string, Material>;
 //   {type: isotropic, E, nu, rho}
 //   {type: orthotropic, E1, E2, E3, G12, G13, G23, nu12, nu13, nu23, rho}
 //   {type: anisotropic, C: 6x6 (Voigt, material axes), rho}
+// each optionally with strength: {Xt, Xc, Yt, Yc, S12} (Pa, all positive).
 MaterialLibrary readMaterials(const InputNode& block);
+// Reads a `strength: {Xt, Xc, Yt, Yc, S12}` map; every value positive and in a
+// physical range, else InputError at the key.
+PlyStrength readStrength(const InputNode& strength);
 // Looks up `node`'s scalar as a material name, with a did-you-mean error.
 const Material& lookupMaterial(const MaterialLibrary& lib, const InputNode& node);
 

@@ -41,11 +41,13 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     }
     shell.laminate = laminateStiffness(it->second, materials, kappa);
     shell.laminate_name = name;
+    shell.plies = plyTable(it->second, materials);
   } else if (s.has("material")) {
     const Material& m = lookupMaterial(materials, s["material"]);
     const double t = s["thickness"].asPositive();
     shell.laminate = laminateStiffness(homogeneousLaminate(m.name, t), materials, kappa);
     shell.laminate_name = m.name;
+    shell.plies = plyTable(homogeneousLaminate(m.name, t), materials);
   } else {
     s.fail("missing the shell's section: expected laminate: NAME, or material: NAME with thickness: T");
   }

@@ -10,6 +10,7 @@
 
 #include "common/input.h"
 #include "common/laminate.h"
+#include "common/stress_data.h"
 #include "fe-prep/elements/shell_triangle.h"
 
 namespace fc::feprep {
@@ -20,6 +21,7 @@ struct ShellSpec {
   std::string geo_file;              // mesh: {file: ...} (resolved path)
   LaminateStiffness laminate;
   std::string laminate_name;
+  PlyTable plies;  // the laminate's plies for stress recovery (/stress/plies)
   fe::ShellKind kind = fe::ShellKind::DST;
   long triangles = 0;  // mesh: {triangles: N}
   double size = 0.0;   // mesh: {size: h}

@@ -101,6 +101,42 @@ class Stopwatch {
   double c0_ = 0.0;
 };
 
+// What stress recovery needs (docs/stresses.md): every element's centroid
+// (beams: midpoint) and, for shells, the generalised strains at the centroid
+// per mode, through the element's own strain operator (the one its stiffness
+// integrates), plus the ply table.
+StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes) {
+  StressRecoveryData d;
+  const long nm = shapes.cols();
+  if (spec.shell) {
+    const long ne = static_cast<long>(mesh.triangles.size());
+    d.centroids.resize(ne, 3);
+    d.shell_strains.resize(6 * ne, nm);
+    const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
+    Eigen::Matrix<double, 18, Eigen::Dynamic> q(18, nm);
+    for (long e = 0; e < ne; ++e) {
+      const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
+      Eigen::Matrix3d xyz;
+      for (int i = 0; i < 3; ++i) {
+        xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
+        q.middleRows<6>(6 * i) = shapes.middleRows<6>(6 * t[static_cast<std::size_t>(i)]);
+      }
+      d.centroids.row(e) = xyz.colwise().mean();
+      d.shell_strains.middleRows<6>(6 * e) =
+          fe::shellStrainOperator(xyz, spec.shell->laminate, spec.shell->kind, Eigen::Vector3d::UnitX(), centre) * q;
+    }
+    d.plies = spec.shell->plies;
+  } else {
+    const long ne = static_cast<long>(mesh.beams.size());
+    d.centroids.resize(ne, 3);
+    for (long e = 0; e < ne; ++e) {
+      const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+      d.centroids.row(e) = 0.5 * (mesh.nodes.row(b[0]) + mesh.nodes.row(b[1]));
+    }
+  }
+  return d;
+}
+
 }  // namespace
 
 Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
@@ -501,6 +537,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.nodal_mass(i, 0) = sys.lumped.segment<3>(6 * i).mean();
     body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
   }
+  body.stress = stressRecoveryData(mesh, spec, body.shapes);
   const RigidProperties rp =
       spec.shell ? shellProperties(mesh, spec.shell->laminate) : beamProperties(mesh, spec.beam->Ms, kSectionX2);
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.

@@ -90,6 +90,11 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
                 static_cast<long>(biggest) + 1, e(biggest),
                 share > 0.05 ? ": the highest kept modes are excited, try more modes" : "");
   }
+  if (r.peak_failure_index.found)
+    std::printf("  largest Tsai-Wu failure index %.4g (body %s, element %ld, ply %ld, 0-based; t = %.6g s)%s\n",
+                r.peak_failure_index.value, r.peak_failure_index.body.c_str(), r.peak_failure_index.element,
+                r.peak_failure_index.ply, r.peak_failure_index.time,
+                r.peak_failure_index.value >= 1.0 ? ": FAILURE (index >= 1)" : "");
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
   for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.smallest_distance.size(); ++k)

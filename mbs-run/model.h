@@ -15,6 +15,7 @@
 namespace fc::mbs {
 
 struct FlexibleBodyData;  // mbs-run/flexible/flexible_body.h
+struct BodyStressRecovery;  // mbs-run/stress_recovery.h
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -44,6 +45,9 @@ struct Body {
   // Shape for the contact monitor (distance.h): a rod's axis, a plate's
   // mid-plane, a `geometry:` key, or a flexible body's mesh; null if none.
   std::shared_ptr<const BodyGeometry> geometry;
+  // Stress recovery (`outputs: {stresses: [...]}`, stress_recovery.h): set only
+  // for the bodies named there; null costs nothing.
+  std::shared_ptr<const BodyStressRecovery> stress;
   int dof_index = -1;  // first velocity coordinate (6 + modes per free body), -1 if fixed
   int pos_index = -1;  // first position coordinate (7 + modes per free body)
   int nv() const { return 6 + modes; }

@@ -13,6 +13,7 @@
 #include "common/files.h"
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/flexible/modal.h"
+#include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
 
@@ -54,6 +55,19 @@ std::vector<Channel> resultChannels(const Model& m) {
                      for (int i = 0; i < nm; ++i) out[i] = e[i];
                    }});
     }
+    // Stress recovery of the bodies named in outputs.stresses: one dataset per
+    // output, the time leading (e.g. ply_stress (n_out, n_el, n_plies, 3)).
+    if (const auto& r = m.bodies[k].stress)
+      for (std::size_t i = 0; i < r->outputs.size(); ++i) {
+        const StressOutput& o = r->outputs[i];
+        const long n = o.size();
+        c.push_back({b + o.name, static_cast<int>(n), false,
+                     [k, i, n](const Sample& s, double* out) {
+                       const Eigen::VectorXd& f = s.bodies[k].stress[i];
+                       std::copy(f.data(), f.data() + n, out);
+                     },
+                     std::vector<hsize_t>(o.dims.begin(), o.dims.end())});
+      }
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const std::string p = "joints/" + m.joints[j].name + "/";
@@ -90,13 +104,20 @@ hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk
   const std::string path = "/" + c.name;
   const std::size_t slash = path.rfind('/');
   if (slash > 0) f.createGroup(path.substr(0, slash));
-  const int rank = c.rank1 ? 1 : 2;
-  const hsize_t dims[2] = {0, static_cast<hsize_t>(c.columns)};
-  const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(c.columns)};
-  const hsize_t chunk[2] = {static_cast<hsize_t>(chunk_rows), static_cast<hsize_t>(c.columns)};
-  const hid_t space = H5Screate_simple(rank, dims, maxdims);
+  // (rows), (rows, columns) or (rows, dims...): the row dimension grows.
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{static_cast<hsize_t>(chunk_rows)};
+  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
+                                        : c.rank1      ? std::vector<hsize_t>{}
+                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
+  for (hsize_t d : trailing) {
+    dims.push_back(d);
+    maxdims.push_back(d);
+    chunk.push_back(std::max<hsize_t>(d, 1));
+  }
+  const int rank = static_cast<int>(dims.size());
+  const hid_t space = H5Screate_simple(rank, dims.data(), maxdims.data());
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  H5Pset_chunk(dcpl, rank, chunk);
+  H5Pset_chunk(dcpl, rank, chunk.data());
   // Rows arrive in whole blocks, so no chunk cache is needed; HDF5's default
   // (1 MB per dataset) would hold ~1 MB per channel for nothing.
   const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
@@ -111,16 +132,23 @@ hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk
 
 void appendRows(hid_t d, const Channel& c, const std::string& file, unsigned long long at,
                 unsigned long long rows, const double* data) {
-  const int rank = c.rank1 ? 1 : 2;
-  const hsize_t size[2] = {static_cast<hsize_t>(at + rows), static_cast<hsize_t>(c.columns)};
-  const hsize_t start[2] = {static_cast<hsize_t>(at), 0};
-  const hsize_t count[2] = {static_cast<hsize_t>(rows), static_cast<hsize_t>(c.columns)};
-  bool ok = H5Dset_extent(d, size) >= 0;
+  std::vector<hsize_t> size{static_cast<hsize_t>(at + rows)}, start{static_cast<hsize_t>(at)},
+      count{static_cast<hsize_t>(rows)};
+  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
+                                        : c.rank1      ? std::vector<hsize_t>{}
+                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
+  for (hsize_t t : trailing) {
+    size.push_back(t);
+    start.push_back(0);
+    count.push_back(t);
+  }
+  const int rank = static_cast<int>(size.size());
+  bool ok = H5Dset_extent(d, size.data()) >= 0;
   if (ok) {
     const hid_t fspace = H5Dget_space(d);
-    const hid_t mspace = H5Screate_simple(rank, count, nullptr);
+    const hid_t mspace = H5Screate_simple(rank, count.data(), nullptr);
     ok = fspace >= 0 && mspace >= 0 &&
-         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
+         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0 &&
          H5Dwrite(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) >= 0;
     if (mspace >= 0) H5Sclose(mspace);
     if (fspace >= 0) H5Sclose(fspace);
@@ -250,6 +278,14 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
   peak("peak_reaction_force", r.peak_reaction_force, "joint");
   peak("peak_reaction_torque", r.peak_reaction_torque, "joint");
   peak("peak_modal_coordinate", r.peak_modal_coordinate, "where");
+  if (r.peak_failure_index.found) {
+    // Where and when the largest Tsai-Wu index occurs (element and ply 0-based).
+    f.setAttribute("/", "peak_failure_index", r.peak_failure_index.value);
+    f.setAttribute("/", "peak_failure_index_time", r.peak_failure_index.time);
+    f.setAttribute("/", "peak_failure_index_body", r.peak_failure_index.body);
+    f.setAttribute("/", "peak_failure_index_element", r.peak_failure_index.element);
+    f.setAttribute("/", "peak_failure_index_ply", r.peak_failure_index.ply);
+  }
   f.setAttribute("/", "warnings", joined(r.warnings));
   f.setAttribute("/", "events", joined(r.event_log));
   f.setAttribute("/", "integrator_switches", joined(r.integrator_log));
@@ -288,7 +324,7 @@ CsvWriter::CsvWriter(const std::string& path, const Model& model, const std::vec
     for (int i = 0; i < c.columns; ++i) {
       if (k || i) s << ",";
       s << c.name;
-      if (c.name.find("/modal_") != std::string::npos) s << "_" << i + 1;
+      if (c.name.find("/modal_") != std::string::npos || !c.dims.empty()) s << "_" << i + 1;
       else if (c.columns == 4) s << "_e" << i;
       else if (c.columns > 1) s << "_" << xyz[i];
     }

@@ -25,6 +25,9 @@ struct Channel {
   int columns = 1;
   bool rank1 = true;  // (n_out) dataset rather than (n_out, columns)
   std::function<void(const Sample&, double*)> read;
+  // Trailing dimensions of a dataset of rank > 2 (their product is `columns`),
+  // e.g. (n_elements, n_plies, 3) of ply_stress; empty for rank 1 and 2.
+  std::vector<hsize_t> dims = {};
 };
 // "distances/A-B": the contact monitor's channel of Model::distance_pairs[k].
 std::string distanceChannel(const Model& model, std::size_t k);

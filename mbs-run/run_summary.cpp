@@ -5,6 +5,7 @@
 
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/flexible/modal.h"
+#include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
 
@@ -36,6 +37,13 @@ void RunSummary::observe(const Model& m, const Sample& s) {
     if (m.bodies[k].flex && m.bodies[k].modes > 0)
       peak_modal_energy[k] = peak_modal_energy[k].cwiseMax(
           modalEnergies(m.bodies[k].flex->modal, s.bodies[k].modal, s.bodies[k].modal_rate));
+  for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
+    const auto& r = m.bodies[k].stress;
+    if (!r || r->failure_output < 0 || s.bodies[k].stress.size() != r->outputs.size()) continue;
+    const FailureLocation at = largestFailureIndex(*r, s.bodies[k].stress[static_cast<std::size_t>(r->failure_output)]);
+    if (at.element >= 0 && (!peak_failure_index.found || at.value > peak_failure_index.value))
+      peak_failure_index = {true, at.value, s.time, m.bodies[k].name, at.element, at.ply};
+  }
   if (smallest_distance.size() != s.distances.size())
     smallest_distance.assign(s.distances.size(), Peak{std::numeric_limits<double>::infinity(), 0.0, ""});
   for (std::size_t k = 0; k < s.distances.size(); ++k)

@@ -39,6 +39,16 @@ struct RunSummary {
   // Peak over the output rows of each mode's energy (modalEnergies), per body
   // (empty for rigid bodies): which modes the run excited (issue 16).
   std::vector<Eigen::VectorXd> peak_modal_energy;
+  // Largest failure index over the bodies with stress recovery, their
+  // elements (0-based, rows of /mesh/centroids), plies (0-based, bottom up)
+  // and output rows; found = false when no body has one.
+  struct FailurePeak {
+    bool found = false;
+    double value = 0.0, time = 0.0;
+    std::string body;
+    long element = -1, ply = -1;
+  };
+  FailurePeak peak_failure_index;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
 
@@ -51,6 +52,7 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
     b.angular_velocity = P[k].A * P[k].w;
     b.modal = P[k].modal;
     b.modal_rate = P[k].modal_rate;
+    if (m.bodies[k].stress) m.bodies[k].stress->recover(b.modal, b.stress);
   }
   const std::vector<JointReaction> reac = sys.reactions(t, y);
   s.joints.resize(m.joints.size());

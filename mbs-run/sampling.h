@@ -19,6 +19,9 @@ struct BodySample {
   Eigen::Vector3d position, velocity, angular_velocity;  // global
   Eigen::Vector4d orientation;                           // Euler parameters
   Eigen::VectorXd modal, modal_rate;                     // flexible bodies, else empty
+  // Bodies with stress recovery: one field per BodyStressRecovery::outputs
+  // (ply stresses, failure indices), else empty.
+  std::vector<Eigen::VectorXd> stress;
 };
 
 struct JointSample {

@@ -6,6 +6,7 @@
 #include "common/rotations.h"
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/rigid_body.h"
+#include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
 
@@ -507,9 +508,29 @@ std::shared_ptr<BodyGeometry> meshGeometry(const Body& b, const InputNode& at) {
   return g;
 }
 
+// outputs.stresses: flexible bodies whose stresses are recovered at every
+// output (stress_recovery.h); their files' recovery data is read here, the
+// other bodies' never.
+void parseStresses(const InputNode& list, Model& m) {
+  if (!list.isSequence()) list.fail("expected a list of flexible body names, e.g. [panel2, panel3]");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const InputNode n = list.at(k);
+    Body& b = m.bodies[bodyRef(m, n)];
+    if (!b.flex)
+      n.fail("body '" + b.name + "' is not flexible: stress recovery needs a flexible body (flexible: {file: ...}) "
+             "written by fe-prep");
+    if (b.stress) n.fail("body '" + b.name + "' is named twice");
+    try {
+      b.stress = loadShellStressRecovery(b.flex->file, b.modes);
+    } catch (const std::exception& e) {
+      n.fail("cannot recover the stresses of body '" + b.name + "': " + e.what());
+    }
+  }
+}
+
 void parseOutputs(const InputNode& o, Model& m) {
   o.allowKeys({"distances", "stresses"});
-  if (o.has("stresses")) o["stresses"].fail("ply stress recovery is not implemented in this version of mbs-run");
+  if (o.has("stresses")) parseStresses(o["stresses"], m);
   if (!o.has("distances")) return;
   const InputNode d = o["distances"];
   if (!d.isSequence()) d.fail("expected a list of body pairs [[A, B], ...]");

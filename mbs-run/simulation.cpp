@@ -26,6 +26,7 @@ void History::append(const Sample& s) {
     orientation.resize(nb);
     modal.resize(nb);
     modal_rate.resize(nb);
+    stress.resize(nb);
   }
   if (reaction.size() != nj) {
     joint_angle.resize(nj);
@@ -45,6 +46,7 @@ void History::append(const Sample& s) {
     angular_velocity[k].push_back(b.angular_velocity);
     modal[k].push_back(b.modal);
     modal_rate[k].push_back(b.modal_rate);
+    stress[k].push_back(b.stress);
   }
   for (std::size_t j = 0; j < nj; ++j) {
     reaction[j].push_back(s.joints[j].reaction_force);
@@ -73,6 +75,7 @@ Sample History::row(std::size_t i) const {
     b.angular_velocity = angular_velocity[k][i];
     b.modal = modal[k][i];
     b.modal_rate = modal_rate[k][i];
+    b.stress = stress[k][i];
   }
   s.joints.resize(reaction.size());
   for (std::size_t j = 0; j < reaction.size(); ++j) {

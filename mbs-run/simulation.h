@@ -24,6 +24,7 @@ struct History {
   std::vector<std::vector<Eigen::Vector3d>> position, velocity, angular_velocity;
   std::vector<std::vector<Eigen::Vector4d>> orientation;
   std::vector<std::vector<Eigen::VectorXd>> modal, modal_rate; // [body][row] (flexible bodies)
+  std::vector<std::vector<std::vector<Eigen::VectorXd>>> stress;  // [body][row] (bodies with stress recovery)
   std::vector<std::vector<double>> joint_angle;                // [joint][row] (revolute only)
   std::vector<std::vector<Eigen::Vector3d>> reaction, reaction_torque;  // [joint][row]
   std::vector<double> kinetic, potential, strain, dissipated, applied_work, violation;

@@ -135,4 +135,28 @@ ShellMatrices shellTriangle(const Eigen::Matrix3d& xyz, const LaminateStiffness&
   return out;
 }
 
+Eigen::Matrix<double, 6, 18> shellStrainOperator(const Eigen::Matrix3d& xyz, const LaminateStiffness& lam,
+                                                 ShellKind kind, const Eigen::Vector3d& material_x,
+                                                 const Eigen::Vector3d& L) {
+  checkLaminate(lam);
+  const ShellFrame frame = shellFrame(xyz, material_x);
+  const TriangleGeometry g = triangleGeometry(frame.xy);
+  const DiscretePlateTriangle plate(g, lam.D, lam.As, kind == ShellKind::DST);
+  const Eigen::Matrix<double, 3, 6> Bm = membraneStrain(g);
+  const Eigen::Matrix<double, 3, 9> Bb = plate.curvature(L);
+  // Same DOF maps as localStiffness: membrane [u v] and bending [w tx ty] per node.
+  Eigen::Matrix<double, 6, 18> local = Eigen::Matrix<double, 6, 18>::Zero();
+  for (int i = 0; i < 3; ++i) {
+    local.block<3, 1>(0, 6 * i + kU) = Bm.col(2 * i);
+    local.block<3, 1>(0, 6 * i + kV) = Bm.col(2 * i + 1);
+    local.block<3, 1>(3, 6 * i + kW) = Bb.col(3 * i);
+    local.block<3, 1>(3, 6 * i + kTx) = Bb.col(3 * i + 1);
+    local.block<3, 1>(3, 6 * i + kTy) = Bb.col(3 * i + 2);
+  }
+  // q_local = diag(R, ..., R) q_body.
+  Eigen::Matrix<double, 6, 18> G;
+  for (int b = 0; b < 6; ++b) G.middleCols<3>(3 * b) = local.middleCols<3>(3 * b) * frame.R;
+  return G;
+}
+
 }  // namespace fc::fe

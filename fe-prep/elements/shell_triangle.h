@@ -34,4 +34,15 @@ ShellMatrices shellTriangle(const Eigen::Matrix3d& xyz, const LaminateStiffness&
                             ShellKind kind, const Eigen::Vector3d& material_x,
                             double drilling = 1.0e-4);
 
+// Generalised strains at area coordinates L (the centroid: L = (1/3, 1/3, 1/3))
+// for the 18 body-frame DOF q of shellTriangle: e = G q with
+// e = [eps_x, eps_y, gamma_xy, kappa_x, kappa_y, kappa_xy] in the element's
+// laminate axes (shellFrame: x the projected material_x, z the normal), the
+// membrane strains of the CST and the curvatures of the DKT/DST plate, so that
+// the in-plane strain at height z is eps + z kappa and [N; M] = ABD e exactly
+// as in the stiffness. Stress recovery (docs/stresses.md) uses it per mode.
+Eigen::Matrix<double, 6, 18> shellStrainOperator(const Eigen::Matrix3d& xyz, const LaminateStiffness& lam,
+                                                 ShellKind kind, const Eigen::Vector3d& material_x,
+                                                 const Eigen::Vector3d& L);
+
 }  // namespace fc::fe

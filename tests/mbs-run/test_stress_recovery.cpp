@@ -1,0 +1,256 @@
+// Stress recovery kernels (mbs-run/stress_recovery.h) against hand values and
+// independent transformations, the `strength` key, the body-file data round
+// trip and the scene's outputs.stresses errors. The whole chain against
+// classical lamination theory and CalculiX: tests/fe-prep/test_stress_validation.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/laminate.h"
+#include "common/materials.h"
+#include "flexible/random_body.h"
+#include "helpers.h"
+#include "mbs-run/results.h"
+#include "mbs-run/simulation.h"
+#include "mbs-run/stress_recovery.h"
+
+namespace fc::mbs::test {
+namespace {
+
+const char* kIm6 = R"(materials:
+  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, G23: 3.6e9,
+        nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600,
+        strength: {Xt: 2.0e9, Xc: 1.2e9, Yt: 50e6, Yc: 200e6, S12: 80e6}}
+)";
+
+fc::MaterialLibrary materials(const std::string& yaml) {
+  return fc::readMaterials(fc::InputNode::loadString(yaml, "m.yaml")["materials"]);
+}
+
+TEST(StressKernels, StrainRotationIsTheTensorRotation) {
+  // Independent route: rotate the strain tensor [[ex, g/2], [g/2, ey]] into the
+  // ply axes e1 = (c, s), e2 = (-s, c): eps_ab = e_a^T eps e_b, gamma_12 = 2 eps_12.
+  const Eigen::Vector3d e(1.3e-3, -0.4e-3, 0.9e-3);
+  Eigen::Matrix2d t;
+  t << e(0), e(2) / 2, e(2) / 2, e(1);
+  for (double deg : {0.0, 30.0, 45.0, 90.0, -60.0, 135.0}) {
+    const double a = deg * M_PI / 180;
+    const Eigen::Vector2d e1(std::cos(a), std::sin(a)), e2(-std::sin(a), std::cos(a));
+    const Eigen::Vector3d want(e1.dot(t * e1), e2.dot(t * e2), 2 * e1.dot(t * e2));
+    // Rounding only: entries are products of cosines of order 1 times 1e-3.
+    EXPECT_LT((strainToPlyAxes(a) * e - want).norm(), 1e-18) << deg;
+  }
+  EXPECT_LT((strainToPlyAxes(0) - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+}
+
+TEST(StressKernels, PlyStiffnessSeenFromTheLaminateIsQbar) {
+  // sigma_12 = Q T eps and the stress energy sigma . eps_12 = eps^T (T^T Q T) eps:
+  // T^T Q T must be Reddy's Q-bar, which common/laminate computes by an
+  // independent route (Bond rotation of the 3-D stiffness, then plane stress).
+  const fc::Material& m = materials(kIm6).at("im6");
+  const Eigen::Matrix3d Q = fc::reducedStiffness(m);
+  for (double deg : {0.0, 25.0, 45.0, 90.0, -30.0}) {
+    const double a = deg * M_PI / 180;
+    const Eigen::Matrix3d T = strainToPlyAxes(a);
+    // 1e-9 relative: two routes through 6x6 inversions of a stiffness with
+    // condition ~1e2, rounding at 1e-14 each.
+    EXPECT_LT((T.transpose() * Q * T - fc::rotatedReducedStiffness(m, a)).norm(), 1e-9 * Q.norm()) << deg;
+  }
+}
+
+TEST(StressKernels, TsaiWuHandValues) {
+  Strength5 s;
+  s << 2.0e9, 1.2e9, 50e6, 200e6, 80e6;
+  const TsaiWu c = tsaiWuCoefficients(s);
+  // Each uniaxial strength is exactly on the failure surface: F1 Xt + F11 Xt^2 =
+  // 1 - Xt/Xc + Xt/Xc = 1, and likewise for Xc, Yt, Yc and S12.
+  const double tol = 1e-14;  // rounding of a handful of products of order 1
+  EXPECT_NEAR(tsaiWuIndex(c, {2.0e9, 0, 0}), 1.0, tol);
+  EXPECT_NEAR(tsaiWuIndex(c, {-1.2e9, 0, 0}), 1.0, tol);
+  EXPECT_NEAR(tsaiWuIndex(c, {0, 50e6, 0}), 1.0, tol);
+  EXPECT_NEAR(tsaiWuIndex(c, {0, -200e6, 0}), 1.0, tol);
+  EXPECT_NEAR(tsaiWuIndex(c, {0, 0, 80e6}), 1.0, tol);
+  EXPECT_NEAR(tsaiWuIndex(c, {0, 0, -80e6}), 1.0, tol);
+  // By hand, sigma = (500, 20, 30) MPa:
+  //   F1 s1 = (1/2000 - 1/1200) 500 = -0.1666667     F2 s2 = (1/50 - 1/200) 20 = 0.3
+  //   F11 s1^2 = 500^2/(2000*1200) = 0.1041667      F22 s2^2 = 20^2/(50*200) = 0.04
+  //   F66 t^2 = 30^2/80^2 = 0.140625                 2 F12 s1 s2 = -sqrt(0.1041667*0.04) = -0.0645497
+  //   sum = 0.3535753
+  EXPECT_NEAR(tsaiWuIndex(c, {500e6, 20e6, 30e6}), 0.3535753, 1e-7);  // the hand sum's 7 digits
+  s(2) = -1;
+  EXPECT_THROW(tsaiWuCoefficients(s), std::invalid_argument);
+}
+
+TEST(StressKernels, RecoveryOfTwoPliesByHand) {
+  // One element, plies 0 and 90 deg at z = -/+ 0.5 mm, generalised strains per
+  // mode given: the recovered stresses must be Q T (eps0 + z kappa) of each ply.
+  fc::StressRecoveryData d;
+  d.centroids = Eigen::MatrixXd::Zero(1, 3);
+  d.shell_strains.resize(6, 2);
+  d.shell_strains.col(0) << 1e-4, -2e-5, 3e-5, 0.02, -0.01, 0.005;
+  d.shell_strains.col(1) << -3e-5, 1e-5, 0, 0.0, 0.04, -0.01;
+  fc::Laminate lam;
+  lam.plies = {{"im6", 0.001, 0.0}, {"im6", 0.001, 90.0}};
+  d.plies = fc::plyTable(lam, materials(kIm6));
+  ASSERT_TRUE(d.plies.hasStrength());
+  EXPECT_DOUBLE_EQ(d.plies.z_mid(0), -0.0005);
+  EXPECT_DOUBLE_EQ(d.plies.z_mid(1), 0.0005);
+  const auto r = shellStressRecovery(d);
+  ASSERT_EQ(r->outputs.size(), 2u);
+  const Eigen::Vector2d q(0.7, -1.9);
+  std::vector<Eigen::VectorXd> f;
+  r->recover(q, f);
+  const Vector6d e = d.shell_strains * q;
+  const Eigen::Matrix3d Q = d.plies.stiffness[0];
+  // Ply 0 (0 deg): material axes are the laminate axes.
+  const Eigen::Vector3d s0 = Q * (e.head<3>() - 0.0005 * e.tail<3>());
+  // Ply 1 (90 deg): eps_1 = eps_y, eps_2 = eps_x, gamma_12 = -gamma_xy.
+  const Eigen::Vector3d l1 = e.head<3>() + 0.0005 * e.tail<3>();
+  const Eigen::Vector3d s1 = Q * Eigen::Vector3d(l1(1), l1(0), -l1(2));
+  for (int c = 0; c < 3; ++c) {
+    // Rounding of sums of products of size |Q| |eps| ~ 1e7 Pa.
+    EXPECT_NEAR(f[0](c), s0(c), 1e-6);
+    EXPECT_NEAR(f[0](3 + c), s1(c), 1e-6);
+  }
+  const TsaiWu c = tsaiWuCoefficients(d.plies.strength.row(0).transpose());
+  EXPECT_NEAR(f[1](0), tsaiWuIndex(c, s0), 1e-14);
+  EXPECT_NEAR(f[1](1), tsaiWuIndex(c, s1), 1e-14);
+  const FailureLocation at = largestFailureIndex(*r, f[1]);
+  EXPECT_EQ(at.element, 0);
+  EXPECT_EQ(at.ply, f[1](1) > f[1](0) ? 1 : 0);
+}
+
+void expectMaterialError(const std::string& strength, const std::string& key, const std::string& words) {
+  const std::string yaml = "materials:\n  cfrp: {type: isotropic, E: 70e9, nu: 0.3, rho: 1600,\n         strength: " +
+                           strength + "}\n";
+  try {
+    materials(yaml);
+    FAIL() << "accepted " << strength;
+  } catch (const fc::InputError& e) {
+    EXPECT_EQ(e.line(), 3) << e.what();
+    EXPECT_NE(e.keyPath().find(key), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(MaterialStrength, ReadAndCheckedAtTheKey) {
+  const fc::Material& m = materials(kIm6).at("im6");
+  ASSERT_TRUE(m.strength.has_value());
+  EXPECT_EQ(m.strength->Xc, 1.2e9);
+  EXPECT_EQ(m.strength->S12, 80e6);
+  EXPECT_FALSE(materials("materials:\n  a: {type: isotropic, E: 70e9, nu: 0.3, rho: 2700}\n").at("a").strength);
+  expectMaterialError("{Xt: 1e9, Xc: -1e9, Yt: 5e7, Yc: 2e8, S12: 8e7}", "strength.Xc", "positive");
+  expectMaterialError("{Xt: 1e9, Xc: 1e9, Yt: 5e7, Yc: 2e8}", "strength", "S12");
+  expectMaterialError("{Xt: 1e9, Xc: 1e9, Yt: 5e7, Yc: 2e8, S12: 8e7, S13: 1e7}", "strength", "unknown key 'S13'");
+  expectMaterialError("{Xt: 2000, Xc: 1e9, Yt: 5e7, Yc: 2e8, S12: 8e7}", "strength.Xt", "outside the physical range");
+  expectMaterialError("1e9", "strength", "expected a map");
+}
+
+// A small body file with (or without) shell stress data: random mass-normalised
+// modes on 6 nodes, four triangles.
+std::string stressBody(bool with_stress, const std::string& tag) {
+  fc::FlexBody b = fc::testing::randomBody(6, 3, 5);
+  b.elements["triangles"] = (fc::IndexMatrix(4, 3) << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5).finished();
+  if (with_stress) {
+    b.stress.centroids = Eigen::MatrixXd::Random(4, 3);
+    b.stress.shell_strains = Eigen::MatrixXd::Random(24, 3) * 1e-3;
+    fc::Laminate lam;
+    lam.plies = {{"im6", 0.0005, 0.0}, {"im6", 0.0005, 45.0}, {"im6", 0.0005, -45.0}};
+    b.stress.plies = fc::plyTable(lam, materials(kIm6));
+  }
+  return writeTempBody(b, tag);
+}
+
+TEST(StressData, BodyFileRoundTripReadsTheLeadingModes) {
+  fc::FlexBody b = fc::testing::randomBody(6, 3, 5);
+  b.elements["triangles"] = (fc::IndexMatrix(4, 3) << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5).finished();
+  b.stress.centroids = Eigen::MatrixXd::Random(4, 3);
+  b.stress.shell_strains = Eigen::MatrixXd::Random(24, 3);
+  fc::Laminate lam;
+  lam.plies = {{"im6", 0.0005, 0.0}, {"im6", 0.001, 90.0}};
+  b.stress.plies = fc::plyTable(lam, materials(kIm6));
+  const std::string path = writeTempBody(b, "stress_roundtrip");
+  const fc::StressRecoveryData d = fc::readStressData(path, 2);
+  EXPECT_EQ(d.centroids, b.stress.centroids);
+  EXPECT_EQ(d.shell_strains, b.stress.shell_strains.leftCols(2));
+  EXPECT_EQ(d.plies.z_mid, b.stress.plies.z_mid);
+  EXPECT_EQ(d.plies.angle_deg, b.stress.plies.angle_deg);
+  EXPECT_EQ(d.plies.stiffness[1], b.stress.plies.stiffness[1]);
+  EXPECT_EQ(d.plies.strength, b.stress.plies.strength);
+  // The mesh reader keeps centroids out of the element connectivity.
+  const fc::FlexBodyFile all = fc::readFlexBody(path, -1, fc::FlexBodyParts::All);
+  EXPECT_EQ(all.body.elements.size(), 1u);
+  std::remove(path.c_str());
+}
+
+const std::string kGround = "  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+
+TEST(StressScene, OutputsStressesErrorsAreLocated) {
+  const std::string with = stressBody(true, "stress_scene_with");
+  const std::string without = stressBody(false, "stress_scene_without");
+  const std::string head = "bodies:\n" + kGround + "  - {name: p, flexible: {file: " + with + "}}\n" +
+                           "  - {name: q, flexible: {file: " + without + "}}\n" +
+                           "simulation: {t_end: 0.1}\n";  // lines 1-5
+  auto expect = [&](const std::string& list, int index, const std::string& words) {
+    try {
+      sceneFromText(head + "outputs: {stresses: " + list + "}\n");
+      FAIL() << list;
+    } catch (const fc::InputError& e) {
+      EXPECT_EQ(e.line(), 6) << e.what();
+      EXPECT_NE(e.keyPath().find("outputs.stresses[" + std::to_string(index) + "]"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  expect("[ground]", 0, "not flexible");
+  expect("[p, pp]", 1, "unknown body 'pp'");
+  expect("[q]", 0, "no shell stress recovery data");
+  expect("[p, p]", 1, "named twice");
+  // Named: recovery set up with the file's data; not named: nothing at all.
+  const Model m = sceneFromText(head + "outputs: {stresses: [p]}\n");
+  ASSERT_TRUE(m.bodies[1].stress);
+  EXPECT_FALSE(m.bodies[2].stress);
+  EXPECT_EQ(m.bodies[1].stress->n_plies, 3);
+  const std::vector<Channel> ch = resultChannels(m);
+  int stress_channels = 0;
+  for (const Channel& c : ch) {
+    if (c.name == "bodies/p/ply_stress") {
+      ++stress_channels;
+      EXPECT_EQ(c.dims, (std::vector<hsize_t>{4, 3, 3}));
+    }
+    if (c.name == "bodies/p/failure_index") ++stress_channels;
+    EXPECT_EQ(c.name.find("bodies/q/ply"), std::string::npos);
+    EXPECT_EQ(c.name.find("bodies/q/failure"), std::string::npos);
+  }
+  EXPECT_EQ(stress_channels, 2);
+  const Model none = sceneFromText(head);
+  for (const Body& b : none.bodies) EXPECT_FALSE(b.stress);
+  std::remove(with.c_str());
+  std::remove(without.c_str());
+}
+
+TEST(StressScene, RunWritesStressesAndPeakAtEveryOutput) {
+  // A free random body given modal velocities: every output row carries the
+  // recovery of that row's modal coordinates, and the summary's peak is the
+  // largest index over all rows, elements and plies.
+  const std::string path = stressBody(true, "stress_run");
+  const Model m = sceneFromText("bodies:\n  - {name: p, flexible: {file: " + path +
+                                "}, modal_velocities: [0.01, -0.02, 0.015]}\n"
+                                "simulation: {t_end: 0.2, output_step: 0.05}\noutputs: {stresses: [p]}\n");
+  const Results r = simulate(m);
+  ASSERT_EQ(r.time.size(), 5u);
+  double peak = -1e300;
+  for (std::size_t i = 0; i < r.time.size(); ++i) {
+    std::vector<Eigen::VectorXd> f;
+    m.bodies[0].stress->recover(r.modal[0][i], f);
+    EXPECT_EQ(f[0], r.stress[0][i][0]);
+    EXPECT_EQ(f[1], r.stress[0][i][1]);
+    peak = std::max(peak, f[1].maxCoeff());
+  }
+  ASSERT_TRUE(r.peak_failure_index.found);
+  EXPECT_EQ(r.peak_failure_index.value, peak);
+  EXPECT_EQ(r.peak_failure_index.body, "p");
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace fc::mbs::test
