@@ -207,6 +207,8 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   VectorXd& Q = forces.Q;
   double& dissipation = forces.dissipation;
   const double applied = forces.applied_power;
+  double stiffening_power = 0.0;
+  bool acceleration_stiffening = false;
   const VectorXd v = y.segment(nq, nv);
   Q += Qv_;
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
@@ -215,12 +217,41 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     // Modal stiffness and damping: - (Lambda w + D wdot) on the modal rows.
     Q.segment(b.dof_index + 6, b.modes) -= elasticForces(b.flex->modal, P_[k].modal, P_[k].modal_rate);
     dissipation += dissipatedPower(b.flex->modal, P_[k].modal_rate);
+    if (b.flex->stiffening) {
+      // Geometric stiffening, velocity cases (flexible/geometric_stiffening.h);
+      // its work is booked with the applied loads' (docs/mbs-run.md).
+      const StiffeningParameters p = stiffeningParameters(P_[k].w, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+      const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, true, false) * P_[k].modal;
+      Q.segment(b.dof_index + 6, b.modes) -= f;
+      stiffening_power -= P_[k].modal_rate.dot(f);
+      acceleration_stiffening = acceleration_stiffening || b.flex->stiffening->acceleration_cases;
+    }
   }
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
   const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
-  const AlResult r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
-                                                model_.settings.multiplier_iterations);
+  AlResult r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
+                                     model_.settings.multiplier_iterations);
+  if (acceleration_stiffening) {
+    // Geometric stiffening by the frame's acceleration and angular acceleration:
+    // taken from this first solve, then solved once more with them (their
+    // change of the accelerations is of second order in w).
+    stats_.al_iterations += r.iterations;
+    Vector3d g = Vector3d::Zero();
+    for (std::size_t f = 0; f < model_.forces.size(); ++f)
+      if (force_on_[f] && model_.forces[f].type == ForceType::Gravity) g += model_.forces[f].vector;
+    for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+      const Body& b = model_.bodies[k];
+      if (b.fixed || b.modes == 0 || !b.flex->stiffening || !b.flex->stiffening->acceleration_cases) continue;
+      const Vector3d a0 = P_[k].A.transpose() * (r.vdot.segment<3>(b.dof_index) - g);
+      const StiffeningParameters p = stiffeningParameters(Vector3d::Zero(), r.vdot.segment<3>(b.dof_index + 3), a0);
+      const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, false, true) * P_[k].modal;
+      Q.segment(b.dof_index + 6, b.modes) -= f;
+      stiffening_power -= P_[k].modal_rate.dot(f);
+    }
+    r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
+                              model_.settings.multiplier_iterations);
+  }
   lambda_ = r.lambda;
   stats_.al_iterations += r.iterations;
   stats_.max_al_iterations = std::max(stats_.max_al_iterations, r.iterations);
@@ -239,7 +270,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   }
   ydot.segment(nq, nv) = r.vdot;
   ydot[nq + nv] = dissipation;
-  ydot[nq + nv + 1] = applied + drive_power;
+  ydot[nq + nv + 1] = applied + drive_power + stiffening_power;
 }
 
 StiffModalPart System::modalSplit(double t, const VectorXd& y) {

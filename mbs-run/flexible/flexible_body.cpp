@@ -44,7 +44,7 @@ FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double dam
 }
 
 FlexibleBodyData loadFlexibleBody(const InputNode& flexible) {
-  flexible.allowKeys({"file", "modes", "damping_ratio"});
+  flexible.allowKeys({"file", "modes", "damping_ratio", "geometric_stiffening"});
   const InputNode file_node = flexible["file"];
   const std::string file = resolveRelativeTo(flexible.file(), file_node.asString());
   int available = 0;
@@ -66,13 +66,22 @@ FlexibleBodyData loadFlexibleBody(const InputNode& flexible) {
   }
   double zeta = 0.0;
   if (auto z = flexible.get("damping_ratio")) zeta = z->asNonNegative();
+  FlexibleBodyData b;
   try {
-    return loadFlexibleBody(file, modes, zeta);
+    b = loadFlexibleBody(file, modes, zeta);
   } catch (const H5Error& e) {
     file_node.fail(e.what());
   } catch (const std::invalid_argument& e) {
     file_node.fail(e.what());
   }
+  if (auto g = flexible.get("geometric_stiffening"); g && g->asBool() && b.modes > 0) {
+    try {
+      b.stiffening = std::make_shared<const GeometricStiffening>(readGeometricStiffening(file, b.modes));
+    } catch (const std::exception& e) {
+      g->fail(e.what());
+    }
+  }
+  return b;
 }
 
 }  // namespace fc::mbs

@@ -2,15 +2,18 @@
 // A flexible body of a scene, loaded from its body file: the scene's
 //   flexible: {file: panel.h5, modes: 14, damping_ratio: 0.01}
 // (file relative to the scene; modes: how many of the file's first modes, 0 = the
-// rigid body of the same inertia, default all; damping_ratio: modal, default 0).
+// rigid body of the same inertia, default all; damping_ratio: modal, default 0;
+// geometric_stiffening: true adds the stiffness of the body's inertial loads).
 // Holds exactly what the dynamics needs: invariants, modal stiffness and damping,
 // interfaces (for markers), the body's rigid properties.
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/flexbody.h"
 #include "common/input.h"
+#include "mbs-run/flexible/geometric_stiffening.h"
 #include "mbs-run/flexible/marker.h"
 #include "mbs-run/flexible/modal.h"
 
@@ -24,6 +27,8 @@ struct FlexibleBodyData {
   ModalProperties modal;
   Eigen::VectorXd frequencies_hz;
   std::vector<FlexInterface> interfaces;  // shapes restricted to the first `modes` modes
+  // geometric_stiffening: true (geometric_stiffening.h); null when off: nothing computed.
+  std::shared_ptr<const GeometricStiffening> stiffening;
 
   const FlexInterface* findInterface(const std::string& name) const;  // nullptr if absent
   std::vector<std::string> interfaceNames() const;
