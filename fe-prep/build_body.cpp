@@ -376,11 +376,17 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
     return t;
   };
-  // More modes than the held body has degrees of freedom cannot be had: refuse
-  // them here rather than let the eigen-solver search for what does not exist.
-  if (spec.modes > map.reduced - rigid.cols())
+  // More modes than the held body has degrees of freedom that carry mass
+  // cannot be had (a massless DOF, a shell's drilling rotation, is an infinite
+  // eigenvalue): refuse them here rather than let the eigen-solver search for
+  // what does not exist.
+  const long massless = masslessDofs(sys.M);
+  const long flexible = map.reduced - massless - rigid.cols();
+  if (spec.modes > flexible)
     spec.modes_node.fail("asked for " + std::to_string(spec.modes) + " modes but the meshed body has only " +
-                         std::to_string(map.reduced - rigid.cols()) + " flexible degrees of freedom; ask for fewer modes or refine the mesh");
+                         std::to_string(flexible) + " flexible degrees of freedom that carry mass (" +
+                         std::to_string(massless) + " more carry none: the shells' drilling rotations); ask for "
+                         "fewer modes or refine the mesh");
   ModalRequest req;
   req.modes = spec.static_error > 0 ? 8 : spec.modes;
   req.max_frequency_hz = spec.max_frequency_hz;
@@ -388,9 +394,18 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   Progress peig("eigen-solve", 1.0, quiet);
   ModalResult modal;
   for (;;) {
-    modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
-      peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
-    });
+    bool solver_limit = false;  // static_error: a doubled count the eigen-solver could not deliver
+    try {
+      modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
+        peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
+      });
+    } catch (const ModeCountError& e) {
+      if (spec.static_error <= 0 || modal.eigenvalues.size() == 0) spec.modes_node.fail(e.what());
+      if (rank == 0)
+        std::fprintf(stderr, "fe-prep: warning: modes: {static_error}: %s; keeping the %ld modes found before\n", e.what(),
+                     static_cast<long>(modal.eigenvalues.size()));
+      solver_limit = true;  // `modal` still holds the previous, smaller set
+    }
     if (spec.static_error <= 0) break;
     // modes: {static_error: e}: the fewest leading modes that miss at most e at
     // every interface in every loaded direction; double the count until met.
@@ -399,8 +414,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     const long n = modesForStaticError(t, spec.static_error, &worst);
     // At most 512 modes: a load the modes cannot carry statically (an in-plane
     // force on a panel, whose membrane modes lie far up) is reported, not chased.
-    const long available = std::min<long>(map.reduced - rigid.cols(), 512);
-    if (worst <= spec.static_error || req.modes >= available) {
+    const long available = std::min<long>(flexible, 512);
+    if (worst <= spec.static_error || req.modes >= available || solver_limit) {
       if (worst > spec.static_error && rank == 0)
         std::fprintf(stderr, "fe-prep: warning: modes: {static_error: %g} not reached with %ld modes (%.3g missed); "
                      "the summary and /interfaces/*/static_error say where\n", spec.static_error, n, worst);

@@ -44,13 +44,26 @@ struct Pair {
 
 }  // namespace
 
+long masslessDofs(Mat M) {
+  OwnedVec d;
+  check(MatCreateVecs(M, &d, nullptr), "MatCreateVecs");
+  check(MatGetDiagonal(M, d), "MatGetDiagonal");
+  const Eigen::VectorXd diag = gatherAll(d);
+  const double scale = diag.cwiseAbs().maxCoeff();
+  return static_cast<long>((diag.array().abs() <= 1e-14 * scale).count());
+}
+
 ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
                        const std::function<void(long, long)>& progress) {
   PetscInt N;
   check(MatGetSize(K, &N, nullptr), "MatGetSize");
   const long r = rigid.cols();
-  const long elastic_available = N - r;
-  if (elastic_available <= 0) throw std::runtime_error("the model has no elastic degrees of freedom left");
+  // Massless DOF (drilling rotations) are infinite eigenvalues: only
+  // N - massless - r elastic modes exist, and SLEPc's Krylov basis must stay
+  // within the massive part (below).
+  const long massive = N - masslessDofs(M);
+  const long elastic_available = massive - r;
+  if (elastic_available <= 0) throw ModeCountError("the model has no elastic degrees of freedom that carry mass");
 
   // M-products of the rigid basis, for the share of each mode in the rigid space:
   // share(x) = b^T G^{-1} b with b = R^T M x, G = R^T M R, x M-normalised.
@@ -78,13 +91,18 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
 
   ModalResult result;
   for (;;) {
-    const long nev = std::min<long>(wanted + r, N);
+    const long nev = std::min<long>(wanted + r, massive);
     OwnedEps eps;
     check(EPSCreate(comm, &eps), "EPSCreate");
     check(EPSSetOperators(eps, K, M), "EPSSetOperators");
     check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
     check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
-    check(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT), "EPSSetDimensions");
+    // SLEPc's default basis size max(2 nev, nev + 15), but with its residual
+    // vector no larger than the DOF that carry mass: a Krylov vector beyond
+    // them has an M-norm of round-off, which SLEPc reports as "indefinite
+    // matrix" (issue 16).
+    const PetscInt ncv = static_cast<PetscInt>(std::max<long>(nev, std::min<long>(std::max<long>(2 * nev, nev + 15), nev + (massive - nev) / 2)));
+    check(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT), "EPSSetDimensions");
     check(EPSSetTolerances(eps, request.tolerance, 1000), "EPSSetTolerances");
     const double sigma = r > 0 ? request.shift : 0.0;
     check(EPSSetTarget(eps, sigma), "EPSSetTarget");
@@ -104,7 +122,27 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     MonitorContext mctx{&progress, nev};
     check(EPSMonitorSet(eps, monitor, &mctx, nullptr), "EPSMonitorSet");
     check(EPSSetFromOptions(eps), "EPSSetFromOptions");
-    check(EPSSolve(eps), "EPSSolve");
+    {
+      // A failure here is reported once, as a sentence, not as PETSc's trace.
+      check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+      const PetscErrorCode ierr = EPSSolve(eps);
+      PetscPopErrorHandler();
+      if (ierr) {
+        // A failed solve can leave SLEPc's work matrices checked out: release
+        // the solver now, quietly, so that its clean-up does not print a trace.
+        check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+        EPSDestroy(&eps.h);
+        PetscPopErrorHandler();
+        eps.h = nullptr;
+        const char* text = nullptr;
+        PetscErrorMessage(ierr, &text, nullptr);
+        throw ModeCountError("the eigen-solver failed for " + std::to_string(nev - r) + " modes (SLEPc: " +
+                             (text ? text : "error") + ", code " + std::to_string(ierr) +
+                             "); the body has " + std::to_string(elastic_available) +
+                             " elastic modes with mass, but the solver's basis lost its M-orthogonality among the "
+                             "highest of them (frequencies far above any a multibody run resolves): ask for fewer modes");
+      }
+    }
     PetscInt nconv, its;
     check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
     check(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
@@ -144,8 +182,8 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     }
 
     if (static_cast<long>(pairs.size()) < nev)
-      throw std::runtime_error("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +
-                               std::to_string(nev) + " modes");
+      throw ModeCountError("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +
+                           std::to_string(nev) + " modes (rigid ones included); ask for fewer modes");
 
     // The r modes with the largest rigid share are the rigid ones.
     std::vector<std::size_t> order(pairs.size());
@@ -159,7 +197,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     std::sort(kept.begin(), kept.end(), by_lambda);
     std::sort(removed.begin(), removed.end(), by_lambda);
 
-    const bool exhausted = nev >= N;
+    const bool exhausted = nev >= massive;
     if (lambda_max > 0 && !exhausted && (kept.empty() || kept.back().lambda <= lambda_max)) {
       wanted = std::min<long>(2 * wanted, elastic_available);
       continue;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <stdexcept>
 
 namespace fc::feprep {
 
@@ -28,6 +29,19 @@ struct ModalResult {
   double rigid_projection_max = 0.0;  // largest rigid-space share among the kept modes
   long iterations = 0;
 };
+
+// The request cannot be met: more modes than the body has with a finite
+// frequency, or SLEPc failing for that reason. fe-prep locates it at `modes`.
+class ModeCountError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Reduced DOF that carry no mass: a zero diagonal of the positive semidefinite
+// M (so a zero row and column), e.g. a shell node's drilling rotation, which
+// has stiffness (the drilling penalty) but no inertia. Each is an infinite
+// eigenvalue: at most N - masslessDofs(M) - r elastic modes exist.
+long masslessDofs(Mat M);
 
 // rigid: reduced DOF x r basis of the admissible rigid motions (every rank).
 // progress(converged, wanted) is called on rank 0 during the iteration.
