@@ -22,6 +22,7 @@
 #include "common/input.h"
 #include "common/rotations.h"
 #include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
 
@@ -123,7 +124,8 @@ class VtpWriter {
          "header_type=\"UInt64\">\n<PolyData>\n<Piece NumberOfPoints=\""
       << n_points << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n_lines << "\" NumberOfStrips=\"0\" NumberOfPolys=\""
       << n_polys << "\">\n";
-    for (const char* s : {"PointData", "Points", "Lines", "Polys"}) x << "<" << s << ">" << xml_[s] << "</" << s << ">\n";
+    for (const char* s : {"PointData", "CellData", "Points", "Lines", "Polys"})
+      x << "<" << s << ">" << xml_[s] << "</" << s << ">\n";
     x << "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
     std::ofstream f(path, std::ios::binary);
     f << x.str();
@@ -138,7 +140,7 @@ class VtpWriter {
 };
 
 void writeBodyFrame(const std::string& path, const Shape& s, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
-                    const Eigen::VectorXd* w) {
+                    const Eigen::VectorXd* w, const Eigen::VectorXd* failure = nullptr) {
   const long n = s.points.rows();
   std::vector<double> x(3 * n), u(3 * n, 0.0);
   Eigen::VectorXd local;
@@ -162,6 +164,9 @@ void writeBodyFrame(const std::string& path, const Shape& s, const Eigen::Vector
   }
   VtpWriter v;
   v.add("PointData", "displacement", "Float64", 3, u);
+  // Bodies with stress recovery: the largest Tsai-Wu index over the plies of
+  // each element (cells in /mesh/triangles order, which is the polygons' order).
+  if (failure) v.add("CellData", "failure_index", "Float64", 1, std::vector<double>(failure->data(), failure->data() + failure->size()));
   v.add("Points", "Points", "Float64", 3, x);
   v.add("Lines", "connectivity", "Int64", 1, lc);
   v.add("Lines", "offsets", "Int64", 1, lo);
@@ -219,6 +224,7 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
   const Eigen::VectorXd t = f.readVector("/time");
   struct Track {
     Eigen::MatrixXd r, p, w;
+    Eigen::MatrixXd failure;  // (n_el, n_out): max over plies of failure_index, bodies with one
   };
   std::vector<Track> tracks;
   for (const Body& b : model.bodies) {
@@ -227,6 +233,16 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
     if (b.modes > 0) tr.w = f.readMatrix(g + "modal_coordinates");
     if (tr.r.rows() != t.size() || tr.p.rows() != t.size() || (b.modes > 0 && tr.w.rows() != t.size()))
       throw std::runtime_error(results_path + ": " + g + " has not one row per output time");
+    if (b.stress && b.stress->failure_output >= 0 && f.exists(g + "failure_index")) {
+      const std::vector<hsize_t> sh = f.shape(g + "failure_index");
+      const long ne = b.stress->n_elements, np = b.stress->n_plies;
+      if (sh.size() != 3 || sh[0] != static_cast<hsize_t>(t.size()) || sh[1] != static_cast<hsize_t>(ne) ||
+          sh[2] != static_cast<hsize_t>(np) || ne != static_cast<long>(shapes[tracks.size()].polys.size()))
+        throw std::runtime_error(results_path + ": " + g + "failure_index does not match the body's elements and plies");
+      const std::vector<double> fi = f.readArray(g + "failure_index");
+      tr.failure = Eigen::Map<const Eigen::MatrixXd>(fi.data(), np, ne * t.size()).colwise().maxCoeff();
+      tr.failure.resize(ne, t.size());
+    }
     tracks.push_back(std::move(tr));
   }
 
@@ -252,7 +268,9 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
       Eigen::VectorXd w;
       if (tr.w.size()) w = tr.w.row(k).transpose();
       const std::string file = stem + frame + "_" + safeName(model.bodies[b].name) + ".vtp";
-      writeBodyFrame(folder + "/" + file, shapes[b], r, A, tr.w.size() ? &w : nullptr);
+      Eigen::VectorXd fmax;
+      if (tr.failure.size()) fmax = tr.failure.col(k);
+      writeBodyFrame(folder + "/" + file, shapes[b], r, A, tr.w.size() ? &w : nullptr, fmax.size() ? &fmax : nullptr);
       vtm << "<DataSet index=\"" << b << "\" name=\"" << xmlEscape(model.bodies[b].name) << "\" file=\""
           << xmlEscape(file) << "\"/>\n";
     }

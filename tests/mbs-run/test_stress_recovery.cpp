@@ -5,11 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 
 #include "common/laminate.h"
 #include "common/materials.h"
 #include "flexible/random_body.h"
 #include "helpers.h"
+#include "mbs-run/animation.h"
 #include "mbs-run/results.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/stress_recovery.h"
@@ -250,6 +254,43 @@ TEST(StressScene, RunWritesStressesAndPeakAtEveryOutput) {
   EXPECT_EQ(r.peak_failure_index.value, peak);
   EXPECT_EQ(r.peak_failure_index.body, "p");
   std::remove(path.c_str());
+}
+
+TEST(StressScene, AnimationCarriesTheLargestPlyIndexPerElement) {
+  // The animation's cell field failure_index is, per triangle, the largest
+  // index over its plies in that row of the results file.
+  const std::string body = stressBody(true, "stress_anim");
+  const std::string dir = std::filesystem::temp_directory_path() / ("stress_anim_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string scene = dir + "/scene.yaml", results = dir + "/r.h5";
+  {
+    std::FILE* f = std::fopen(scene.c_str(), "w");
+    std::fprintf(f, "bodies:\n  - {name: p, flexible: {file: %s}, modal_velocities: [0.01, -0.02, 0.015]}\n"
+                    "simulation: {t_end: 0.1, output_step: 0.05}\noutputs: {stresses: [p]}\n", body.c_str());
+    std::fclose(f);
+  }
+  const Model m = loadScene(scene);
+  const Results r = simulate(m);
+  writeResults(results, m, r, "test");
+  writeAnimation(dir + "/a.pvd", scene, m, results);
+  std::ifstream in(dir + "/a/a_0002_p.vtp", std::ios::binary);
+  const std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string key = "Name=\"failure_index\" NumberOfComponents=\"1\" format=\"appended\" offset=\"";
+  const std::size_t at = raw.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const long offset = std::stol(raw.substr(at + key.size()));
+  const std::size_t data = raw.find('_', raw.find("<AppendedData")) + 1 + static_cast<std::size_t>(offset);
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, raw.data() + data, 8);
+  ASSERT_EQ(bytes, 4 * sizeof(double));
+  const Eigen::VectorXd& fi = r.stress[0][2][1];  // row 2, failure index (4 elements x 3 plies)
+  for (int e = 0; e < 4; ++e) {
+    double v = 0;
+    std::memcpy(&v, raw.data() + data + 8 + 8 * e, 8);
+    EXPECT_EQ(v, fi.segment(3 * e, 3).maxCoeff()) << e;
+  }
+  std::filesystem::remove_all(dir);
+  std::remove(body.c_str());
 }
 
 }  // namespace
