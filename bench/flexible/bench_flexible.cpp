@@ -11,6 +11,7 @@
 
 #include "common/rotations.h"
 #include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/flexible/geometric_stiffening.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {
@@ -58,5 +59,26 @@ void BM_ReadFlexBody(benchmark::State& state) {
 BENCHMARK(BM_ReadFlexBody)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+// Geometric stiffening (issue 15): K_G(p) = sum of the 12 cases and its force
+// K_G w, what System::derivative adds per stiffened body and evaluation (the
+// velocity and the acceleration cases, the two passes together).
+void BM_GeometricStiffeningForce(benchmark::State& state) {
+  const int nm = static_cast<int>(state.range(0));
+  fc::mbs::GeometricStiffening g;
+  for (auto& k : g.K) {
+    const Eigen::MatrixXd r = Eigen::MatrixXd::Random(nm, nm);
+    k = r + r.transpose();
+  }
+  const Eigen::VectorXd w = Eigen::VectorXd::Random(nm);
+  const fc::mbs::StiffeningParameters p =
+      fc::mbs::stiffeningParameters(Eigen::Vector3d(0.1, 0.2, 3.0), Eigen::Vector3d(0.0, 0.0, 0.5), Eigen::Vector3d(-1.0, 0.2, 0.0));
+  for (auto _ : state) {
+    Eigen::VectorXd f = fc::mbs::stiffeningMatrix(g, p, true, false) * w;
+    f += fc::mbs::stiffeningMatrix(g, p, false, true) * w;
+    benchmark::DoNotOptimize(f.data());
+  }
+}
+BENCHMARK(BM_GeometricStiffeningForce)->Arg(4)->Arg(14)->Arg(56);
 
 BENCHMARK_MAIN();

@@ -179,6 +179,20 @@ TEST(GeometricStiffening, OffIsBitIdenticalAndOnCostsLittle) {
     for (long j = 0; j < 4; ++j) ASSERT_EQ(a.modal[1][k](j), c.modal[1][k](j)) << "row " << k;
   }
   EXPECT_EQ(a.steps, c.steps);
+  // Cost (docs/benchmarks.md): CPU per right-hand-side evaluation of the same
+  // scene off and on (best of 3; on: the velocity cases from the state, then a
+  // second constrained solve for the acceleration cases).
+  double per_eval[2] = {1e9, 1e9};
+  long evals[2] = {0, 0};
+  for (int rep = 0; rep < 3; ++rep)
+    for (int on = 0; on < 2; ++on) {
+      const Results r = simulate(sceneFromText(spinningScene(with, 4, 10.0, q0, on == 1, 1.0)), {true});
+      ASSERT_EQ(r.status, "completed");
+      per_eval[on] = std::min(per_eval[on], r.cpu_seconds / static_cast<double>(r.evaluations));
+      evals[on] = r.evaluations;
+    }
+  std::printf("[   info   ] cost: %.2f us per evaluation off (%ld evaluations), %.2f us on (%ld evaluations), ratio %.2f\n",
+              1e6 * per_eval[0], evals[0], 1e6 * per_eval[1], evals[1], per_eval[1] / per_eval[0]);
   // The key on a file without the data: an error at the key.
   try {
     sceneFromText(spinningScene(without, 4, 10.0, q0, true, 0.5));
