@@ -142,26 +142,36 @@ std::string writeBody(const FlexBody& body, const std::string& dir, const std::s
   return path;
 }
 
-// Static modal coordinates under a force F at interface `at`, with the body
-// frame fixed and the interface `held` (if any) held still as the fixed joint
-// holds it: minimise 1/2 q^T Lambda q - q^T Psi_at^T F subject to
-// Psi_held q = 0 (6 rows), a KKT system. Free-interface modes clamped at the
-// held point have Psi_held = 0 and reduce to lambda_j q_j = psi_j . F.
+// Static modal coordinates under a force F at interface `at` with the
+// interface `held` held still, as mbs-run's fixed joint holds it: the body
+// displacement is a rigid motion a of the floating frame plus Psi q, and only
+// q strains it. Minimise 1/2 q^T Lambda q - (Psi_at q + R_at a) . F subject to
+// Psi_held q + R_held a = 0 (6 rows), R_P = [[I, -skew(P)], [0, I]] the rigid
+// motion at P: a KKT system in (q, a, mu). A basis clamped at `held` (free
+// modes with the reference there) has Psi_held = 0, a = 0 and
+// lambda_j q_j = psi_j . F.
 Eigen::VectorXd staticModal(const FlexBody& b, const std::string& at, const Eigen::Vector3d& F, int n,
-                            const std::string& held = "") {
+                            const std::string& held = "root") {
+  auto rigidAt = [](const Eigen::Vector3d& p) {
+    Eigen::Matrix<double, 6, 6> R = Eigen::Matrix<double, 6, 6>::Identity();
+    R.topRightCorner<3, 3>() << 0, p.z(), -p.y(), -p.z(), 0, p.x(), p.y(), -p.x(), 0;  // -skew(p)
+    return R;
+  };
   const FlexInterface& it = b.interface(at);
-  const int c = held.empty() ? 0 : 6;
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + c, n + c);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + c);
+  const FlexInterface& h = b.interface(held);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + 12, n + 12);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 12);
   for (int j = 0; j < n; ++j) {
     K(j, j) = b.eigenvalues(j);
     rhs(j) = it.shapes.row(j).head<3>().dot(F);
   }
-  if (c) {
-    const Eigen::MatrixXd G = b.interface(held).shapes.topRows(n).transpose();  // (6, n)
-    K.bottomLeftCorner(6, n) = G;
-    K.topRightCorner(n, 6) = G.transpose();
-  }
+  rhs.segment<6>(n) = rigidAt(it.position).topRows<3>().transpose() * F;
+  const Eigen::MatrixXd G = h.shapes.topRows(n).transpose();  // (6, n)
+  const Eigen::Matrix<double, 6, 6> Rh = rigidAt(h.position);
+  K.block(n + 6, 0, 6, n) = G;
+  K.block(0, n + 6, n, 6) = G.transpose();
+  K.block<6, 6>(n + 6, n) = Rh;
+  K.block<6, 6>(n, n + 6) = Rh.transpose();
   return K.fullPivLu().solve(rhs).head(n);
 }
 
