@@ -9,23 +9,90 @@ namespace fc::mbs {
 
 using Eigen::VectorXd;
 
+Eigen::MatrixXd BlockDiagonal::dense(std::size_t b) const {
+  if (!arrow(b)) return block[b];
+  const int n = dim(b), r = int(block[b].rows());
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+  D.topRows(r) = block[b];
+  D.bottomLeftCorner(n - r, r) = block[b].rightCols(n - r).transpose();
+  D.bottomRightCorner(n - r, n - r).diagonal() = diagonal[b];
+  return D;
+}
+
 void BlockDiagonal::multiply(const VectorXd& x, VectorXd& y) const {
   y.resize(size);
   for (std::size_t b = 0; b < block.size(); ++b) {
-    const auto n = block[b].rows();
-    y.segment(offset[b], n).noalias() = block[b] * x.segment(offset[b], n);
+    const int n = dim(b);
+    if (!arrow(b)) {
+      y.segment(offset[b], n).noalias() = block[b] * x.segment(offset[b], n);
+      continue;
+    }
+    const int r = int(block[b].rows());
+    const auto xr = x.segment(offset[b], r);
+    const auto xf = x.segment(offset[b] + r, n - r);
+    const auto C = block[b].rightCols(n - r);
+    y.segment(offset[b], r).noalias() = block[b] * x.segment(offset[b], n);
+    y.segment(offset[b] + r, n - r) = diagonal[b].cwiseProduct(xf);
+    y.segment(offset[b] + r, n - r).noalias() += C.transpose() * xr;
   }
 }
 
 SparseMatrixd BlockDiagonal::toSparse() const {
   std::vector<Eigen::Triplet<double>> t;
-  for (std::size_t b = 0; b < block.size(); ++b)
+  for (std::size_t b = 0; b < block.size(); ++b) {
+    const int o = offset[b], r = int(block[b].rows());
     for (Eigen::Index c = 0; c < block[b].cols(); ++c)
-      for (Eigen::Index r = 0; r < block[b].rows(); ++r)
-        t.emplace_back(offset[b] + int(r), offset[b] + int(c), block[b](r, c));
+      for (Eigen::Index i = 0; i < r; ++i) {
+        t.emplace_back(o + int(i), o + int(c), block[b](i, c));
+        if (arrow(b) && c >= r) t.emplace_back(o + int(c), o + int(i), block[b](i, c));
+      }
+    for (Eigen::Index k = 0; k < diagonal[b].size(); ++k) t.emplace_back(o + r + int(k), o + r + int(k), diagonal[b][k]);
+  }
   SparseMatrixd M(size, size);
   M.setFromTriplets(t.begin(), t.end());
   return M;
+}
+
+bool BlockFactor::compute(const BlockDiagonal& M, std::size_t b) {
+  const Eigen::MatrixXd& B = M.block[b];
+  if (!M.arrow(b)) {
+    r_ = 0;
+    llt_.compute(B);
+    return llt_.info() == Eigen::Success;
+  }
+  r_ = int(B.rows());
+  const int nf = M.dim(b) - r_;
+  const Eigen::VectorXd& d = M.diagonal[b];
+  if (!(d.minCoeff() > 0.0)) return false;
+  dh_ = d.cwiseSqrt();
+  E_ = B.rightCols(nf) * dh_.cwiseInverse().asDiagonal();
+  Eigen::MatrixXd S = B.leftCols(r_);
+  S.noalias() -= E_ * E_.transpose();
+  llt_.compute(S);
+  return llt_.info() == Eigen::Success;
+}
+
+void BlockFactor::solveF(Eigen::Ref<Eigen::MatrixXd> X) const {
+  if (r_ == 0) {
+    llt_.matrixL().solveInPlace(X);
+    return;
+  }
+  const Eigen::Index nf = X.rows() - r_;
+  X.bottomRows(nf) = dh_.cwiseInverse().asDiagonal() * X.bottomRows(nf);
+  X.topRows(r_).noalias() -= E_ * X.bottomRows(nf);
+  llt_.matrixL().solveInPlace(X.topRows(r_));
+}
+
+void BlockFactor::solveFT(Eigen::Ref<Eigen::VectorXd> x) const {
+  if (r_ == 0) {
+    llt_.matrixU().solveInPlace(x);
+    return;
+  }
+  const Eigen::Index nf = x.size() - r_;
+  auto xr = x.head(r_);
+  llt_.matrixU().solveInPlace(xr);
+  x.tail(nf).noalias() -= E_.transpose() * xr;
+  x.tail(nf) = x.tail(nf).cwiseQuotient(dh_);
 }
 
 BlockDiagonal BlockDiagonal::fromSparse(const SparseMatrixd& M) {
@@ -43,6 +110,7 @@ BlockDiagonal BlockDiagonal::fromSparse(const SparseMatrixd& M) {
     if (reach == c) {
       D.offset.push_back(start);
       D.block.push_back(Eigen::MatrixXd(M.block(start, start, c + 1 - start, c + 1 - start)));
+      D.diagonal.emplace_back();
       start = c + 1;
       reach = start;
     }
@@ -122,7 +190,7 @@ bool AlSolver::factorizeSchur() {
     std::vector<int> local(m, -1);
     for (std::size_t b = 0; b < nb; ++b) {
       BlockData& B = blocks_[b];
-      const int c0 = M_.offset[b], n = int(M_.block[b].rows());
+      const int c0 = M_.offset[b], n = M_.dim(b);
       for (int c = c0; c < c0 + n; ++c)
         for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it)
           if (local[it.row()] != int(b)) {
@@ -140,9 +208,8 @@ bool AlSolver::factorizeSchur() {
   for (std::size_t b = 0; b < nb; ++b) {
     BlockData& B = blocks_[b];
     const int c0 = M_.offset[b];
-    const int n = int(M_.block[b].rows()), nr = int(B.rows.size());
-    B.llt.compute(M_.block[b]);
-    if (B.llt.info() != Eigen::Success) {
+    const int n = M_.dim(b), nr = int(B.rows.size());
+    if (!B.factor.compute(M_, b)) {
       phi_pattern_.clear();  // the sparse path will run; rebuild the pattern next time
       return false;  // singular body block: K may still be definite
     }
@@ -151,7 +218,7 @@ bool AlSolver::factorizeSchur() {
     std::size_t k = 0;
     for (int c = c0; c < c0 + n; ++c)
       for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.V(c - c0, B.slot[k++]) = it.value();
-    B.llt.matrixL().solveInPlace(B.V);
+    B.factor.solveF(B.V);
     B.G.noalias() = B.V.transpose() * B.V;
     for (int j = 0; j < nr; ++j)
       for (int i = 0; i < nr; ++i) S_(B.rows[i], B.rows[j]) += B.G(i, j);
@@ -197,8 +264,8 @@ VectorXd AlSolver::solveS(const VectorXd& r) const {
 void AlSolver::forwardBlocks(VectorXd& y, VectorXd& u) const {
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const BlockData& B = blocks_[b];
-    auto yb = y.segment(M_.offset[b], M_.block[b].rows());
-    B.llt.matrixL().solveInPlace(yb);
+    auto yb = y.segment(M_.offset[b], M_.dim(b));
+    B.factor.solveF(yb);
     if (B.rows.empty()) continue;
     const VectorXd ub = B.V.transpose() * yb;
     for (std::size_t k = 0; k < B.rows.size(); ++k) u[B.rows[k]] += ub[k];
@@ -209,13 +276,13 @@ void AlSolver::backwardBlocks(VectorXd& x, const VectorXd& z) const {
   VectorXd zb;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const BlockData& B = blocks_[b];
-    auto xb = x.segment(M_.offset[b], M_.block[b].rows());
+    auto xb = x.segment(M_.offset[b], M_.dim(b));
     if (!B.rows.empty()) {
       zb.resize(B.rows.size());
       for (std::size_t k = 0; k < B.rows.size(); ++k) zb[k] = z[B.rows[k]];
       xb.noalias() -= B.V * zb;
     }
-    B.llt.matrixU().solveInPlace(xb);
+    B.factor.solveFT(xb);
   }
 }
 

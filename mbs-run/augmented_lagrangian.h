@@ -33,19 +33,48 @@ namespace fc::mbs {
 
 using SparseMatrixd = Eigen::SparseMatrix<double>;
 
-// A symmetric block-diagonal matrix: dense blocks on the diagonal at the
-// given offsets (the bodies' mass matrices in the velocity coordinates).
+// A symmetric block-diagonal matrix: blocks on the diagonal at the given
+// offsets (the bodies' mass matrices in the velocity coordinates). A block is
+// either dense (block[b] the whole n x n block, diagonal[b] empty) or an arrow
+// block: block[b] holds only its first r rows (r x n) and the rest of the
+// block is diag(diagonal[b]) (n - r entries), zero off the diagonal. A
+// floating-frame flexible body with mass-normalised modes has that structure
+// (r = 6, modal mass diagonal): stored, multiplied and factorised in O(n)
+// instead of O(n^2) and O(n^3) (BlockFactor).
 struct BlockDiagonal {
   int size = 0;
   std::vector<int> offset;
   std::vector<Eigen::MatrixXd> block;
+  std::vector<Eigen::VectorXd> diagonal;  // one per block; empty for a dense block
 
+  int dim(std::size_t b) const { return int(block[b].cols()); }
+  bool arrow(std::size_t b) const { return diagonal[b].size() > 0; }
+  // The whole block b, dense.
+  Eigen::MatrixXd dense(std::size_t b) const;
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   SparseMatrixd toSparse() const;
   // Blocks = the contiguous diagonal ranges no entry of M couples (each a
   // dense block, zeros included); M symmetric in pattern. Body-ordered
   // coordinates give one block per body; a general matrix gives one block.
   static BlockDiagonal fromSparse(const SparseMatrixd& M);
+};
+
+// A factor F of one block, M_b = F F^T, with F^-1 and F^-T applied in place.
+// Dense block: F = L, its Cholesky factor. Arrow block [A C; C^T D]:
+//   F = [Ls  C D^-1/2; 0  D^1/2],  Ls Ls^T = A - C D^-1 C^T
+// (the Schur complement on the small r x r block), so F^-1 and F^-T cost
+// O(n r) and the factorisation O(n r^2).
+class BlockFactor {
+ public:
+  bool compute(const BlockDiagonal& M, std::size_t b);  // false: not positive definite
+  void solveF(Eigen::Ref<Eigen::MatrixXd> X) const;     // X <- F^-1 X
+  void solveFT(Eigen::Ref<Eigen::VectorXd> x) const;    // x <- F^-T x
+
+ private:
+  int r_ = 0;  // leading rows of an arrow block; 0 for a dense block
+  Eigen::LLT<Eigen::MatrixXd> llt_;  // of the block, or of the arrow's Schur complement
+  Eigen::MatrixXd E_;                // C D^-1/2 (r x (n - r))
+  Eigen::VectorXd dh_;               // D^1/2
 };
 
 struct AlResult {
@@ -116,7 +145,7 @@ class AlSolver {
     std::vector<int> rows;
     std::vector<int> slot;  // per nonzero of the block's columns: its row's index in `rows`
     Eigen::MatrixXd V, G;
-    Eigen::LLT<Eigen::MatrixXd> llt;
+    BlockFactor factor;
   };
   // The index arrays of a compressed sparse matrix, to tell when its
   // pattern changes (and cached symbolic work must be redone).

@@ -25,6 +25,22 @@ System::System(const Model& model) : model_(model) {
   force_on_.resize(model.forces.size());
   for (std::size_t f = 0; f < model.forces.size(); ++f) force_on_[f] = model.forces[f].enabled;
   solver_.setMethod(model.settings.linear_solver);
+  // A modal mass block diagonal to rounding (fe-prep normalises the modes
+  // with the body's own lumped mass, so it is the identity to ~1e-15) makes
+  // the body's mass block an arrow block, factorised in O(modes): the
+  // off-diagonal entries it drops are below kDiagonalTolerance of the
+  // diagonal, i.e. rounding of the same order as the solve's own.
+  constexpr double kDiagonalTolerance = 1e-12;
+  modal_mass_.resize(model.bodies.size());
+  for (std::size_t k = 0; k < model.bodies.size(); ++k) {
+    const Body& b = model.bodies[k];
+    if (b.fixed || !b.flex || b.modes == 0) continue;
+    const Eigen::MatrixXd Mff = b.flex->inertia.modalMass();
+    const Eigen::VectorXd d = Mff.diagonal();
+    Eigen::MatrixXd off = Mff;
+    off.diagonal().setZero();
+    if (d.minCoeff() > 0.0 && off.cwiseAbs().maxCoeff() <= kDiagonalTolerance * d.maxCoeff()) modal_mass_[k] = d;
+  }
 }
 
 VectorXd System::initialState() const {
@@ -163,21 +179,35 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed) continue;
-    if (mass_.block.size() <= nb) mass_.block.emplace_back();
+    if (mass_.block.size() <= nb) {
+      mass_.block.emplace_back();
+      mass_.diagonal.emplace_back();
+    }
     mass_.offset.push_back(b.dof_index);
-    Eigen::MatrixXd& Mb = mass_.block[nb++];
-    if (b.flex) {
+    Eigen::MatrixXd& Mb = mass_.block[nb];
+    Eigen::VectorXd& Db = mass_.diagonal[nb++];
+    if (b.flex && modal_mass_[k].size() > 0) {
+      // Floating frame of reference, modal mass diagonal: the arrow block
+      // (the six rigid rows and the constant modal diagonal), O(modes).
+      FlexibleInertiaRows fi = flexibleInertiaRows(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w);
+      Mb.swap(fi.top);
+      Db = modal_mass_[k];
+      Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
+    } else if (b.flex) {
       // Floating frame of reference: inertia from the body file's invariants
       // (mbs-run/flexible, shared conventions of the flexible-body kernel).
       const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w);
       Mb = fi.M;
+      Db.resize(0);
       Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
     } else {
       Mb = rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A);
+      Db.resize(0);
       Qv_.segment<6>(b.dof_index) = rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P[k].A, P[k].w);
     }
   }
   mass_.block.resize(nb);
+  mass_.diagonal.resize(nb);
 }
 
 void System::factorize() {

@@ -127,7 +127,10 @@ class System {
   std::vector<int> row_of_joint_;
   // Workspace.
   std::vector<BodyPose> P_;
-  BlockDiagonal mass_;  // one dense block per free body
+  BlockDiagonal mass_;  // one block per free body (an arrow block for a flexible body, see modal_mass_)
+  // Per body: the diagonal of its constant modal mass block when that block is
+  // diagonal (mass-normalised modes), else empty (the body's block is dense).
+  std::vector<Eigen::VectorXd> modal_mass_;
   SparseMatrixd Phi_v_;
   std::vector<ConstraintRows> joint_rows_;  // rows of each joint, from the last assembly
   Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;

@@ -7,9 +7,11 @@
 //     real-time factor of `dopri5` and `imex`;
 //  C. rigid chains of N = 10..1000 rods on revolute joints: CPU per
 //     right-hand side and per simulated second (dopri5, rtol 1e-6).
-// Usage: bench_integrators [A|B|C]... (all when none given).
+// Usage: bench_integrators [A|B|C]... [modes] (all when none given; modes:
+// only that row of A, for profiling).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <string>
@@ -40,11 +42,12 @@ Results run(const std::string& file, int modes, const char* integ, double rtol, 
   return fc::mbs::simulate(fc::mbs::test::sceneFromText(pendulumScene(file, modes, sim)), {true});
 }
 
-void modes() {
+void modes(int only) {
   std::printf("\n### A. Beam pendulum, modes kept (from the horizontal, 0.5 s up to 16 modes, 0.1 s above; pinned-root modes, undamped)\n\n");
   std::printf("| modes | omega_max [rad/s] | integrator | rtol | CPU s / sim s | steps | rhs evals | tip [m] | tip diff vs rtol 1e-6 [m] | status |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (int nm : {4, 16, 64, 100, 200}) {
+    if (only > 0 && nm != only) continue;
     fc::mbs::test::BeamSpec s;
     s.elements = std::max(20, nm / 2 + 1);
     s.modes = nm;
@@ -138,7 +141,7 @@ void chains() {
 
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "ABC";
-  if (which.find('A') != std::string::npos) modes();
+  if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0);
   if (which.find('B') != std::string::npos) stiff();
   if (which.find('C') != std::string::npos) chains();
 }

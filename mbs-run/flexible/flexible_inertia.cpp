@@ -9,6 +9,20 @@ namespace fc::mbs {
 
 namespace {
 
+// S^T x and S x in one pass over the columns of S (memory, not arithmetic,
+// bounds these products at the sizes of many modes).
+void transposedAndDirectProducts(const Eigen::MatrixXd& S, const Eigen::VectorXd& x, Eigen::VectorXd& St_x,
+                                 Eigen::VectorXd& S_x) {
+  const Eigen::Index n = S.cols();
+  S_x.setZero(S.rows());
+  St_x.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto col = S.col(j);
+    St_x[j] = col.dot(x);
+    S_x.noalias() += x[j] * col;
+  }
+}
+
 // The w-dependent sums every term needs, evaluated once per call.
 struct Deformed {
   Eigen::Vector3d S;      // sum m s
@@ -27,11 +41,20 @@ Deformed deformed(const InertiaInvariants& inv, const Eigen::VectorXd& w) {
   d.B = inv.modal_second_moment;
   if (nm == 0) return d;
   const Eigen::VectorXd cw = inv.modal_second_moment * w;  // (9): C_ab . w
+  // S_ba = S_ab^T, so S_ab^T w and S_ba^T w = S_ab w come from one pass over
+  // S_ab (a <= b): six nm x nm matrices read instead of nine. These products
+  // (the second-order terms in w) are the only O(nm^2) work per evaluation.
+  Eigen::VectorXd wS_ab(nm), wS_ba(nm);
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const Eigen::VectorXd wS = inv.modal_products[3 * a + b].transpose() * w;  // (w^T S_ab)^T
-      d.E(a, b) += cw(3 * a + b) + cw(3 * b + a) + wS.dot(w);
-      d.B.row(3 * a + b) += wS.transpose();
+    for (int b = a; b < 3; ++b) {
+      transposedAndDirectProducts(inv.modal_products[3 * a + b], w, wS_ab, wS_ba);
+      d.B.row(3 * a + b) += wS_ab.transpose();
+      const double q = wS_ab.dot(w);
+      d.E(a, b) += cw(3 * a + b) + cw(3 * b + a) + q;
+      if (b != a) {
+        d.B.row(3 * b + a) += wS_ba.transpose();
+        d.E(b, a) += cw(3 * b + a) + cw(3 * a + b) + q;
+      }
     }
   return d;
 }
@@ -49,20 +72,71 @@ Eigen::MatrixXd crossCoupling(const Eigen::MatrixXd& B) {
   return c;
 }
 
+// The first six rows of M, [M_rr M_rt M_rf; M_tr M_tt M_tf] (6, 6+nm): with
+// the constant modal block M_ff they are the whole (symmetric) matrix.
+Eigen::MatrixXd topRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A, const Deformed& d) {
+  const int nm = inv.n_modes;
+  Eigen::MatrixXd T(6, 6 + nm);
+  T.block<3, 3>(0, 0) = inv.mass * Eigen::Matrix3d::Identity();
+  T.block<3, 3>(0, 3) = -A * skew(d.S);
+  T.block<3, 3>(3, 0) = T.block<3, 3>(0, 3).transpose();
+  T.block<3, 3>(3, 3) = translationalInertia(d.E) + inv.rotary_inertia;
+  if (nm > 0) {
+    T.block(0, 6, 3, nm) = A * inv.modal_first_moment;
+    T.block(3, 6, 3, nm) = crossCoupling(d.B) + inv.rotary_modal;
+  }
+  return T;
+}
+
 Eigen::MatrixXd massMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A, const Deformed& d) {
   const int nm = inv.n_modes;
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 + nm, 6 + nm);
-  M.block<3, 3>(0, 0) = inv.mass * Eigen::Matrix3d::Identity();
-  M.block<3, 3>(0, 3) = -A * skew(d.S);
-  M.block<3, 3>(3, 3) = translationalInertia(d.E) + inv.rotary_inertia;
+  Eigen::MatrixXd M(6 + nm, 6 + nm);
+  M.topRows(6) = topRows(inv, A, d);
   if (nm > 0) {
-    M.block(0, 6, 3, nm) = A * inv.modal_first_moment;
-    M.block(3, 6, 3, nm) = crossCoupling(d.B) + inv.rotary_modal;
-    M.block(6, 6, nm, nm) = inv.modalMass();
+    M.bottomLeftCorner(nm, 6) = M.topRightCorner(6, nm).transpose();
+    M.bottomRightCorner(nm, nm) = inv.modalMass();
   }
-  // Lower triangle by symmetry.
-  M.triangularView<Eigen::StrictlyLower>() = M.transpose().triangularView<Eigen::StrictlyLower>();
   return M;
+}
+
+// Q_v from the deformed sums (see the header).
+Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Matrix3d& A, const Deformed& d,
+                                  const Eigen::VectorXd& wdot, const Eigen::Vector3d& omega) {
+  const int nm = inv.n_modes;
+  if (wdot.size() != nm)
+    throw std::invalid_argument("flexible body: " + std::to_string(wdot.size()) +
+                                " modal rates for a body with " + std::to_string(nm) + " modes");
+  const Eigen::Matrix3d Wt = skew(omega);
+  const Eigen::Matrix3d W2 = Wt * Wt;
+  Eigen::VectorXd Qv = Eigen::VectorXd::Zero(6 + nm);
+  Eigen::Vector3d s1wd = Eigen::Vector3d::Zero();  // sum m Phi wdot
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();     // G_ab = sum m s_a Phi_b wdot
+  if (nm > 0) {
+    s1wd = inv.modal_first_moment * wdot;
+    const Eigen::VectorXd g = d.B * wdot;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) G(a, b) = g(3 * a + b);
+  }
+  Qv.head<3>() = -A * (W2 * d.S + 2.0 * Wt * s1wd);
+  Eigen::Vector3d h_rot = inv.rotary_inertia * omega;
+  if (nm > 0) h_rot += inv.rotary_modal * wdot;
+  Qv.segment<3>(3) = -Wt * (translationalInertia(d.E) * omega) -
+                     2.0 * (omega * G.trace() - G.transpose() * omega) - Wt * h_rot;
+  if (nm > 0) {
+    Eigen::VectorXd qf = Eigen::VectorXd::Zero(nm);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) qf += W2(a, b) * d.B.row(3 * b + a).transpose();
+    // sum_ab 2 Wt_ab S_ab wdot over a != b, Wt skew: 2 Wt_ab (S_ab - S_ab^T) wdot for a < b.
+    Eigen::VectorXd St_wd(nm), S_wd(nm);
+    for (int a = 0; a < 3; ++a)
+      for (int b = a + 1; b < 3; ++b) {
+        if (Wt(a, b) == 0.0) continue;
+        transposedAndDirectProducts(inv.modal_products[3 * a + b], wdot, St_wd, S_wd);
+        qf += 2.0 * Wt(a, b) * (S_wd - St_wd);
+      }
+    Qv.tail(nm) = -qf;
+  }
+  return Qv;
 }
 
 }  // namespace
@@ -75,39 +149,20 @@ Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Ma
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
                                 const Eigen::Vector3d& omega) {
-  const int nm = inv.n_modes;
-  if (wdot.size() != nm)
-    throw std::invalid_argument("flexible body: " + std::to_string(wdot.size()) +
-                                " modal rates for a body with " + std::to_string(nm) + " modes");
   const Deformed d = deformed(inv, w);
   FlexibleInertia out;
+  out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
   out.M = massMatrix(inv, A, d);
+  return out;
+}
 
-  const Eigen::Matrix3d Wt = skew(omega);
-  const Eigen::Matrix3d W2 = Wt * Wt;
-  out.Qv = Eigen::VectorXd::Zero(6 + nm);
-  Eigen::Vector3d s1wd = Eigen::Vector3d::Zero();  // sum m Phi wdot
-  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();     // G_ab = sum m s_a Phi_b wdot
-  if (nm > 0) {
-    s1wd = inv.modal_first_moment * wdot;
-    const Eigen::VectorXd g = d.B * wdot;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) G(a, b) = g(3 * a + b);
-  }
-  out.Qv.head<3>() = -A * (W2 * d.S + 2.0 * Wt * s1wd);
-  Eigen::Vector3d h_rot = inv.rotary_inertia * omega;
-  if (nm > 0) h_rot += inv.rotary_modal * wdot;
-  out.Qv.segment<3>(3) = -Wt * (translationalInertia(d.E) * omega) -
-                         2.0 * (omega * G.trace() - G.transpose() * omega) - Wt * h_rot;
-  if (nm > 0) {
-    Eigen::VectorXd qf = Eigen::VectorXd::Zero(nm);
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        qf += W2(a, b) * d.B.row(3 * b + a).transpose();
-        if (Wt(a, b) != 0.0) qf += 2.0 * Wt(a, b) * (inv.modal_products[3 * a + b] * wdot);
-      }
-    out.Qv.tail(nm) = -qf;
-  }
+FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
+                                        const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
+                                        const Eigen::Vector3d& omega) {
+  const Deformed d = deformed(inv, w);
+  FlexibleInertiaRows out;
+  out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
+  out.top = topRows(inv, A, d);
   return out;
 }
 

@@ -33,6 +33,17 @@ struct FlexibleInertia {
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
                                 const Eigen::Vector3d& omega);
+// The same without the constant modal block: the first six rows of M, whose
+// last nm columns are the coupling C = [M_rf; M_tf] (M = [top; C^T M_ff]).
+// O(nm) storage, for the solvers that use the structure of M (a diagonal
+// M_ff for mass-normalised modes: mbs-run/augmented_lagrangian.h, arrow blocks).
+struct FlexibleInertiaRows {
+  Eigen::MatrixXd top;  // (6, 6+nm)
+  Eigen::VectorXd Qv;   // (6+nm)
+};
+FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
+                                        const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
+                                        const Eigen::Vector3d& omega);
 // Only the mass matrix (what an implicit integrator's iteration matrix needs).
 Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                    const Eigen::VectorXd& w);
