@@ -87,6 +87,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/geometric_stiffness/matrices", "1/m, 1",
        "modal geometric stiffness per unit inertial load case (12, n_modes, n_modes), cases in attribute `cases` "
        "(docs/body-file.md, Geometric stiffness)"},
+      {"flexbody", "/geometric_stiffness/interfaces/*/matrices", "1/N, 1/(N m)",
+       "modal geometric stiffness of a unit force x y z / moment x y z at the interface (6, n_modes, n_modes), "
+       "interfaces the reference does not hold (docs/body-file.md, Geometric stiffness)"},
       // mbs-run
       {"results", "/time", "s", "output times"},
       {"results", "/bodies/*/position", "m", "body frame origin, global"},

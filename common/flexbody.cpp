@@ -132,6 +132,13 @@ void requireSizes(const FlexBody& b, const InertiaInvariants* inv, const std::st
     for (const auto& k : b.geometric_stiffness)
       if (k.rows() != nm || k.cols() != nm) bad("geometric_stiffness matrices must be (" + str(nm) + ", " + str(nm) + ")");
   }
+  for (const auto& it : b.interfaces) {
+    if (it.geometric_stiffness.empty()) continue;
+    if (it.geometric_stiffness.size() != 6) bad("interface " + it.name + ": geometric_stiffness must hold 6 load cases");
+    for (const auto& k : it.geometric_stiffness)
+      if (k.rows() != nm || k.cols() != nm)
+        bad("interface " + it.name + ": geometric_stiffness matrices must be (" + str(nm) + ", " + str(nm) + ")");
+  }
   if (inv && inv->n_modes != nm)
     bad("invariants are for " + str(inv->n_modes) + " modes, the body has " + str(nm));
 }
@@ -374,6 +381,14 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
     std::string cases;
     for (const char* c : kGeometricStiffnessCases) cases += (cases.empty() ? "" : ", ") + std::string(c);
     f.setAttribute("/geometric_stiffness/matrices", "cases", cases);
+  }
+  for (const auto& it : body.interfaces) {
+    if (it.geometric_stiffness.empty()) continue;
+    std::vector<double> g;
+    for (const auto& k : it.geometric_stiffness) g.insert(g.end(), k.data(), k.data() + k.size());
+    const std::string path = "/geometric_stiffness/interfaces/" + it.name + "/matrices";
+    writeArray(f, path, {6, um, um}, g.data());
+    f.setAttribute(path, "cases", "force_x, force_y, force_z, moment_x, moment_y, moment_z");
   }
 
   // Invariants, mode index leading so that the first nm modes are a leading hyperslab.

@@ -51,6 +51,11 @@ struct FlexInterface {
   Eigen::VectorXd static_compliance;   // (6)
   Eigen::MatrixXd static_participation;// (n_modes, 6)
   Eigen::VectorXd static_error;        // (6)
+  // fe-prep geometric_stiffness: true, interfaces the reference does not hold:
+  // the modal geometric stiffness (n_modes, n_modes) of a unit force x, y, z and
+  // moment x, y, z (body axes) at the point; empty otherwise. Written as
+  // /geometric_stiffness/interfaces/NAME/matrices (docs/body-file.md).
+  std::vector<Eigen::MatrixXd> geometric_stiffness;
 };
 
 // The unit load cases of FlexBody::geometric_stiffness, in order (the load

@@ -522,6 +522,16 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
     body.geometric_stiffness =
         modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, kSectionX2, spec.beam->Ks, body.shapes);
+    // Loads applied at the interfaces (joint reactions, force elements); an
+    // interface the reference holds passes its loads straight to the support.
+    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
+      const bool held = std::any_of(spec.reference.begin(), spec.reference.end(),
+                                    [&](const auto& r) { return r.set == mesh_interfaces[k].name; });
+      if (!held)
+        body.interfaces[k].geometric_stiffness =
+            interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh), kSectionX2,
+                                        spec.beam->Ks, body.shapes);
+    }
   }
   for (std::size_t k = 0; k < body.interfaces.size(); ++k) {
     body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);

@@ -76,4 +76,11 @@ std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& 
   return projectBeamGeometricStiffness(mesh, section_x2, Ks, beamAxialForces(mesh, section_x2, Ks, u), shapes);
 }
 
+std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+                                                         const Eigen::MatrixXd& loads, const Eigen::Vector3d& section_x2,
+                                                         const Matrix6d& Ks, const Eigen::MatrixXd& shapes) {
+  const Eigen::MatrixXd u = solveStatic(comm, K, map, loads);
+  return projectBeamGeometricStiffness(mesh, section_x2, Ks, beamAxialForces(mesh, section_x2, Ks, u), shapes);
+}
+
 }  // namespace fc::feprep

@@ -63,4 +63,14 @@ std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& 
                                                      const Eigen::VectorXd& lumped, const Eigen::Vector3d& section_x2,
                                                      const Matrix6d& Ks, const Eigen::MatrixXd& shapes);
 
+// The geometric stiffness of loads applied at an interface (joint reactions,
+// force elements): the six unit cases force x, y, z and moment x, y, z in body
+// axes at the interface's reference point, reaching the nodes through its
+// coupling as f = L^T e_k (interfaceLoads, the same loads as static_response),
+// then the same static solve, axial forces and projection as the inertial
+// cases. loads: (6 n, 6). Returns 6 symmetric (n_modes, n_modes) matrices.
+std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+                                                         const Eigen::MatrixXd& loads, const Eigen::Vector3d& section_x2,
+                                                         const Matrix6d& Ks, const Eigen::MatrixXd& shapes);
+
 }  // namespace fc::feprep

@@ -11,7 +11,9 @@
 //   Coriolis coupling with it neglected, as in the published tables).
 // Hermite cubic elements, consistent mass, geometric stiffness int T N'^T N' dx
 // by 4-point Gauss (exact: the integrand is a polynomial of degree 6).
-// (Optionally a hanging beam's gravity tension, below.)
+// (Optionally a hanging beam's gravity tension, a constant tip tension, and a
+// tip point mass M that adds M to the tip's translational mass and M Omega^2 L
+// to the tension everywhere, below.)
 // Published check of the flapwise values (test_geometric_stiffness.cpp):
 // Wright, Smith, Thresher & Wang, J. Appl. Mech. 49 (1982) 197-202, and Hodges &
 // Rutkowski, AIAA J. 19 (1981) 1459-1466.
@@ -24,8 +26,12 @@ namespace fc::test {
 // Angular frequencies [rad/s] of the first n modes; lag: the in-plane family.
 // g_axial: an additional uniform axial acceleration field pulling the beam
 // away from its root (a hanging beam under gravity g: T += rho A g (L - x)).
+// tip_tension: a constant axial force P pulling the tip (T += P); tip_mass: a
+// point mass M at the tip (mass M on the tip's deflection, T += M Omega^2 L and,
+// lead-lag, its own centrifugal softening -M Omega^2).
 inline Eigen::VectorXd rotatingBeamFrequencies(double L, double EI, double rhoA, double Omega, bool lag,
-                                               int elements = 40, int n = 3, double g_axial = 0.0) {
+                                               int elements = 40, int n = 3, double g_axial = 0.0,
+                                               double tip_tension = 0.0, double tip_mass = 0.0) {
   const int ndof = 2 * (elements + 1);
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(ndof, ndof), M = Eigen::MatrixXd::Zero(ndof, ndof);
   const double h = L / elements;
@@ -42,7 +48,8 @@ inline Eigen::VectorXd rotatingBeamFrequencies(double L, double EI, double rhoA,
     Eigen::Matrix4d kg = Eigen::Matrix4d::Zero();
     for (int g = 0; g < 4; ++g) {
       const double xi = 0.5 * (gx[g] + 1.0), x = (e + xi) * h;
-      const double T = 0.5 * rhoA * Omega * Omega * (L * L - x * x) + rhoA * g_axial * (L - x);
+      const double T = 0.5 * rhoA * Omega * Omega * (L * L - x * x) + rhoA * g_axial * (L - x) + tip_tension +
+                       tip_mass * Omega * Omega * L;
       Eigen::Vector4d dN;  // dN/dx of the Hermite cubics
       dN << (-6 * xi + 6 * xi * xi) / h, 1 - 4 * xi + 3 * xi * xi, (6 * xi - 6 * xi * xi) / h, -2 * xi + 3 * xi * xi;
       kg += 0.5 * h * gw[g] * T * dN * dN.transpose();
@@ -52,6 +59,8 @@ inline Eigen::VectorXd rotatingBeamFrequencies(double L, double EI, double rhoA,
     K.block<4, 4>(2 * e, 2 * e) += kt;
     M.block<4, 4>(2 * e, 2 * e) += me;
   }
+  M(ndof - 2, ndof - 2) += tip_mass;
+  if (lag) K(ndof - 2, ndof - 2) -= tip_mass * Omega * Omega;
   // Clamped root: drop the first two DOF.
   const Eigen::MatrixXd Kr = K.bottomRightCorner(ndof - 2, ndof - 2), Mr = M.bottomRightCorner(ndof - 2, ndof - 2);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);
