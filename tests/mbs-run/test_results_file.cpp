@@ -27,6 +27,24 @@ std::string tmpPath(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("mbs_test_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
+// A run with thousands of events (a rigid-truss SAR run's resting stops)
+// failed to write its results file: HDF5 keeps attributes in the object
+// header (at most 64 kB). The logs are now cut below that and say so.
+TEST(ResultsFile, LongEventLogStillWritesTheFile) {
+  const Model m = sceneFromText(kScene);
+  Results r = simulate(m, {true});
+  for (int k = 0; k < 5000; ++k)
+    r.event_log.push_back("t=" + std::to_string(k) + ": stop S on joint R rests (a long enough line of text)");
+  const std::string path = tmpPath("long_log.h5");
+  ASSERT_NO_THROW(writeResults(path, m, r, "deadbeef"));
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  const std::string events = f.stringAttribute("/", "events");
+  EXPECT_LT(events.size(), 64000u);
+  EXPECT_EQ(events.rfind("t=0: stop S", 0), 0u) << events.substr(0, 80);  // the first events are kept
+  EXPECT_NE(events.find(" more lines (the run's summary on stdout lists them all)"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
 TEST(ResultsFile, ContractLayout) {
   const Model m = sceneFromText(kScene);
   const Results r = simulate(m, {true});
