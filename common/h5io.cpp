@@ -199,7 +199,9 @@ std::vector<std::string> H5File::children(const std::string& group_path) const {
   for (hsize_t i = 0; i < info.nlinks; ++i) {
     ssize_t n = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0,
                                    H5P_DEFAULT);
-    if (n < 0 || n > 4096) throw H5Error(path_ + ": unreadable link name in " + group_path);
+    // Any length HDF5 stores (a 5000-character joint name is a valid name); the bound
+    // only stops a damaged length field from asking for gigabytes.
+    if (n < 0 || n > (1 << 20)) throw H5Error(path_ + ": unreadable link name in " + group_path);
     std::string name(static_cast<std::size_t>(n), '\0');
     H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), n + 1,
                        H5P_DEFAULT);
@@ -478,6 +480,17 @@ std::vector<T> readAll(hid_t file, const std::string& fname, const std::string& 
   Handle space(H5Dget_space(dset.get()), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) throw H5Error(fname + ": unreadable shape of dataset " + path);
+  // A chunked dataset can declare 2^36 numbers and store none (a damaged or hostile
+  // file): reading it would ask for terabytes. Past 256 MB, the declared size must be
+  // near what the file stores (our writers do not compress; 64x leaves room for others).
+  const double declared = static_cast<double>(n) * sizeof(T);
+  if (declared > 256.0 * (1 << 20)) {
+    const double stored = static_cast<double>(H5Dget_storage_size(dset.get()));
+    if (declared > 64.0 * std::max(stored, 1.0))
+      throw H5Error(fname + ": dataset " + path + " declares " + std::to_string(n) +
+                    " numbers but the file stores " + std::to_string(static_cast<long long>(stored)) +
+                    " bytes of it; expected a dataset holding its data (a damaged file?)");
+  }
   std::vector<T> out(static_cast<std::size_t>(n));
   if (n > 0 && H5Dread(dset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw H5Error(fname + ": cannot read dataset " + path + " as numbers");

@@ -297,6 +297,18 @@ std::string InputNode::asString() const {
   return node_.Scalar();
 }
 
+std::string InputNode::asName() const {
+  const std::string name = asString();
+  const bool blank = name.find_first_not_of(" \t") == std::string::npos;
+  const bool control = std::any_of(name.begin(), name.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  if (blank || name == "." || name == ".." || name.find('/') != std::string::npos || control)
+    fail("expected a name usable as a results group (not empty or blank, '.', '..', without '/' "
+         "or control characters), got '" + (control ? std::string("(control characters)") : name) + "'");
+  return name;
+}
+
 Eigen::VectorXd InputNode::asVector(int expected_size) const {
   if (!node_.IsSequence())
     fail(expected_size > 0 ? "expected a list of " + std::to_string(expected_size) + " numbers, got " +

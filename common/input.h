@@ -67,6 +67,9 @@ class InputNode {
   long asInt() const;
   bool asBool() const;
   std::string asString() const;
+  // A name the tools use as an HDF5 group or label (/bodies/NAME, /joints/NAME, a
+  // body's name): not empty or blank, not '.' or '..', no '/' or control characters.
+  std::string asName() const;
   Eigen::VectorXd asVector(int expected_size = -1) const;  // [a, b, c]
   Eigen::MatrixXd asMatrix(int rows, int cols) const;      // [[..],[..]]
 

@@ -135,7 +135,10 @@ std::string inspectFile(const std::string& path) {
   }
   // A damaged file still gets its datasets listed: the summary is best effort.
   try {
-    summarise(f, kind, os);
+    std::ostringstream summary;  // whole or not at all: no half line before the reason
+    summary << std::setprecision(6);
+    summarise(f, kind, summary);
+    os << summary.str();
   } catch (const H5Error& e) {
     os << "summary: not available (" << e.what() << ")\n";
   }

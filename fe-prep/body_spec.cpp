@@ -176,7 +176,7 @@ BodySpec parseBodySpec(const InputNode& root) {
   const InputNode b = root["body"];
   b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction",
                "geometric_stiffness"});
-  spec.name = b.string("name", "body");
+  spec.name = b.has("name") ? b["name"].asName() : std::string("body");
   if (b.has("shell") == b.has("beam")) b.fail("expected exactly one of shell: or beam:");
   if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
   else spec.beam = parseBeam(b["beam"], materials, spec);

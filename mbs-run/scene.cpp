@@ -18,12 +18,7 @@ Vector3d vec3(const InputNode& n) { return n.asVector(3); }
 
 // Body and joint names become HDF5 group names in the results (/bodies/NAME,
 // /joints/NAME): refuse the ones HDF5 would read as a path, here at their key.
-std::string groupName(const InputNode& n) {
-  const std::string name = n.asString();
-  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
-    n.fail("expected a name usable as a results group (not empty, '.', '..', and without '/'), got '" + name + "'");
-  return name;
-}
+std::string groupName(const InputNode& n) { return n.asName(); }
 
 Vector3d unitVector(const InputNode& n) {
   const Vector3d v = n.asVector(3);

@@ -67,8 +67,11 @@ int main(int argc, char** argv) {
             fc::InputError(where.file(), where.line(), where.column(), where.path(),
                            "cannot mesh this section: ").what());
         mesh = meshSection(spec);
-      } catch (const fc::InputError&) {
-        throw;
+      } catch (const fc::InputError& e) {
+        // Located in the mesh file (a .geo line): as it is. About the whole file (its
+        // kind, unreadable): at the key that named it.
+        if (e.line() > 0) throw;
+        where.fail(std::string("cannot mesh this section: ") + e.file() + ": " + e.message());
       } catch (const std::exception& e) {
         where.fail(std::string("cannot mesh this section: ") + e.what());
       }

@@ -37,6 +37,12 @@ class TokenStream {
   }
 
   bool atEnd() const { return li_ >= lines_.size(); }
+  // Numbers from the current position to the end of the file.
+  double numbersLeft() const {
+    double n = 0;
+    for (std::size_t i = li_; i < lines_.size(); ++i) n += static_cast<double>(lines_[i].tokens.size());
+    return atEnd() ? 0 : n - static_cast<double>(ti_);
+  }
   int line() const { return atEnd() ? (lines_.empty() ? 0 : lines_.back().number) : lines_[li_].number; }
 
   // Reads the next `count` tokens; `what` names them in errors.
@@ -181,6 +187,16 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
   const long nmate = ts.integer("nmate");
   if (nnode < 3 || nelem < 1 || nmate < 1)
     ts.failAt(ts.lastLine(), "nnode nelem nmate", "expected positive counts");
+  // Nodes take 3 numbers, elements 10 and an orientation record of 3 at least, materials
+  // 4 at least: counts beyond what the file holds are an error here, not an
+  // allocation of 2^31 elements.
+  const double needed = 3.0 * nnode + 13.0 * nelem + 4.0 * nmate, left = ts.numbersLeft();
+  if (needed > left)
+    ts.failAt(ts.lastLine(), "nnode nelem nmate",
+              std::to_string(nnode) + " nodes, " + std::to_string(nelem) + " elements and " +
+                  std::to_string(nmate) + " materials need at least " + std::to_string(static_cast<long>(needed)) +
+                  " numbers, but the file holds " + std::to_string(static_cast<long>(left)) +
+                  " more; expected the counts of the records that follow");
 
   SectionMesh& mesh = model.mesh;
   mesh.source_file = name;
@@ -223,6 +239,11 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
     for (int k = 0; k < 9; ++k) {
       const long id = static_cast<long>(v[k + 1]);
       if (id == 0) continue;
+      for (int j = 0; j < k; ++j)
+        if (static_cast<long>(v[j + 1]) == id)
+          ts.failAt(line, "element " + std::to_string(el.user_id),
+                    "node " + std::to_string(id) + " appears twice; expected distinct nodes (a "
+                    "quadrilateral collapsed to a triangle is given as a triangle, 4th node 0)");
       auto it = node_index.find(id);
       if (it == node_index.end())
         ts.failAt(line, "element " + std::to_string(el.user_id),

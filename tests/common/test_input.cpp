@@ -108,6 +108,21 @@ TEST(InputHardening, DuplicateKeysNameBothLocations) {
   EXPECT_EQ(errorOf([] { InputNode::loadString("s: 1\nx: 2\ns: 3\n", "t.yaml"); }).line(), 3);
 }
 
+// Names become HDF5 groups and labels (fuzz campaign, other seeds: a body named '/',
+// '.', '' or a tab was accepted by fe-prep). Each refusal is at the name's key.
+TEST(InputHardening, NamesMustBeUsableAsGroups) {
+  for (const char* bad : {"\"\"", "\" \"", "\"\\t\"", ".", "..", "a/b", "/", "\"a\\nb\"", "\"x\\u007f\""}) {
+    const auto root = InputNode::loadString(std::string("body:\n  name: ") + bad + "\n", "n.yaml");
+    auto e = errorOf([&] { root["body"]["name"].asName(); });
+    EXPECT_EQ(e.line(), 2) << bad;
+    EXPECT_EQ(e.keyPath(), "body.name") << bad;
+    EXPECT_NE(std::string(e.what()).find("usable as a results group"), std::string::npos) << e.what();
+  }
+  for (const char* good : {"panel", "R1 hinge", "a.b", "...x", "\u00e9t\u00e9"})
+    EXPECT_EQ(InputNode::loadString(std::string("name: \"") + good + "\"\n")["name"].asName(), good);
+  EXPECT_EQ(InputNode::loadString("name: " + std::string(5000, 'x') + "\n")["name"].asName().size(), 5000u);
+}
+
 TEST(InputHardening, ComplexKeysAreLocatedErrors) {
   auto e = errorOf([] { InputNode::loadString("a:\n  ? [x, y]\n  : 1\n", "c.yaml"); });
   EXPECT_EQ(e.line(), 2);

@@ -426,3 +426,51 @@ TEST(H5Readers, TreeWalksEndOnLinkCycles) {
   EXPECT_EQ(f.stringAttribute("/inertia/mass", "units"), "kg");
   EXPECT_EQ(f.readScalar("/inertia/loop/inertia/mass"), 3.0);
 }
+
+// A joint named with 5000 characters is a valid HDF5 link name; the writer's commit
+// walks the file and used to refuse names over 4096 characters as "unreadable"
+// (fuzz campaign, other seeds: an error naming the temporary, not the input).
+TEST(H5Readers, LongLinkNamesAreListed) {
+  const fs::path d = freshDir("longnames");
+  const std::string path = (d / "results.h5").string(), name(5000, 'x');
+  {
+    fc::AtomicH5Writer w(path);
+    fc::writeProvenance(w.file(), "results/1", "test", "x");
+    w.file().writeVector("/joints/" + name + "/angle", Eigen::VectorXd::Ones(2));
+    w.commit();
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.children("/joints"), std::vector<std::string>{name});
+  EXPECT_EQ(f.stringAttribute("/joints/" + name + "/angle", "units"), "rad");
+  EXPECT_NE(fc::inspectFile(path).find(name + "/"), std::string::npos);
+}
+
+// A chunked dataset declaring 2^36 numbers and storing none (fuzz campaign, other
+// seeds: mbs-run ran out of memory reading a body file's /inertia/mass, an error
+// naming neither file nor dataset). Refused as an H5Error naming both.
+TEST(H5Readers, HugeDeclaredShapesAreRefusedBeforeAllocating) {
+  const fs::path d = freshDir("huge");
+  const std::string path = (d / "body.h5").string();
+  {
+    const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    const hsize_t dims[1] = {hsize_t(1) << 36}, chunk[1] = {1024};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, chunk);
+    const hid_t ds = H5Dcreate2(f, "/mass", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    H5Dclose(ds);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  fc::H5File f(path, fc::H5File::Mode::Read);
+  try {
+    f.readVector("/mass");
+    ADD_FAILURE() << "no error";
+  } catch (const fc::H5Error& e) {
+    EXPECT_NE(std::string(e.what()).find("body.h5: dataset /mass declares 68719476736 numbers"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(fc::inspectFile(path).find("mass  (68719476736)"), std::string::npos);
+}

@@ -47,6 +47,15 @@ grep -q SECRET log && bad "an include error echoed the included file"
 printf 'materials:\n  m: {type: isotropic, E: 1e9, nu: 0.3, rho: 1000}\n  m: {type: isotropic, E: 2e9, nu: 0.3, rho: 1000}\nsection: {shape: solid_circle, diameter: 0.006, material: m}\n' > dup.yaml
 expect_error 2 "dup.yaml:3:3: materials.m: duplicate key 'm' (first given at line 2" $SP dup.yaml -o out.h5 -q
 expect_error 2 "sg_nan_output_3cells.sg:610: node 605" $SP sg_nan_output_3cells.sg -o out.h5 -q
+# Found by the fuzz campaign with other seeds (2026-11-24): .sg counts beyond the file
+# (an out-of-memory error without location), a node repeated in an element (accepted),
+# a section.file that is missing or of another kind (an error naming no key).
+sed '4s/.*/2147483648 1 1/' sg_nan_output_3cells.sg > sg_huge_count.sg
+expect_error 2 "sg_huge_count.sg:4: nnode nelem nmate: 2147483648 nodes" $SP sg_huge_count.sg -o out.h5 -q
+printf '1 1\n1 0 0\n0 0 0 0\n4 1 1\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n1 1 2 2 4 0 0 0 0 0\n1 1 0\n1 1 0\n1 0\n1e9 0.3\n1\n' > sg_repeat.sg
+expect_error 2 "sg_repeat.sg:9: element 1: node 2 appears twice" $SP sg_repeat.sg -o out.h5 -q
+printf 'materials:\n  m: {type: isotropic, E: 1e9, nu: 0.3, rho: 1000}\nsection:\n  shape: mesh\n  file: missing_xyz\n' > sec_missing_file.yaml
+expect_error 2 "sec_missing_file.yaml:5:9: section.file: cannot mesh this section: .*missing_xyz: expected a gmsh" $SP sec_missing_file.yaml -o out.h5 -q
 # Output path equal to an input, or unwritable: refused before computing.
 cp sec_circle.yaml same.yaml; cp same.yaml same.orig
 expect_error 2 "would destroy that input" $SP same.yaml -o same.yaml -q
@@ -105,6 +114,9 @@ expect_error 2 "system.geo:1:1: the .geo command 'System'" $FP panel_sys.yaml -o
 # More modes than the mesh has degrees of freedom: refused at the key, not searched for forever.
 sed 's/mesh: {file: exit.geo}/rectangle: {length: 0.2, width: 0.1}\n    mesh: {triangles: 8}/; s/modes: 2/modes: 1000000000/' panel.yaml > panel_modes.yaml
 expect_error 2 "panel_modes.yaml:12:10: body.modes: asked for 1000000000 modes" $FP panel_modes.yaml -o out.h5 -q
+# A body name that is no group name (fuzz campaign, other seeds: '/', '.', '', a tab were accepted).
+sed 's|  name: p|  name: "a/b"|' panel_modes.yaml > panel_name.yaml
+expect_error 2 "panel_name.yaml:4:9: body.name: expected a name usable as a results group" $FP panel_name.yaml -o out.h5 -q
 sed 's/mesh: {file: exit.geo}/rectangle: {length: 2, width: 1}\n    mesh: {size: 0.004}/' panel.yaml > slowpanel.yaml
 for sig in TERM HUP; do
   rm -f out*
