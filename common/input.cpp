@@ -303,9 +303,14 @@ std::string InputNode::asName() const {
   const bool control = std::any_of(name.begin(), name.end(), [](char c) {
     return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
   });
-  if (blank || name == "." || name == ".." || name.find('/') != std::string::npos || control)
+  // At most 1024 characters: names are also written as attribute values (the summary's
+  // peaks), and HDF5 keeps a root's attributes within 64 kB.
+  if (blank || name == "." || name == ".." || name.find('/') != std::string::npos || control ||
+      name.size() > 1024)
     fail("expected a name usable as a results group (not empty or blank, '.', '..', without '/' "
-         "or control characters), got '" + (control ? std::string("(control characters)") : name) + "'");
+         "or control characters, at most 1024 characters), got '" +
+         (control ? std::string("(control characters)")
+                  : name.size() > 1024 ? name.substr(0, 40) + "...' (" + std::to_string(name.size()) + " characters)" : name + "'"));
   return name;
 }
 

@@ -297,12 +297,16 @@ PiecewiseLinear parseTable(const InputNode& t) {
 ForceElement parseForce(const Model& m, const InputNode& f, int index) {
   const std::string type = f["type"].asString();
   ForceElement fe;
-  fe.name = f.string("name", type + "#" + std::to_string(index));
+  fe.name = f.has("name") ? f["name"].asName() : type + "#" + std::to_string(index);
   fe.enabled = f.flag("enabled", true);
   if (type == "gravity") {
     f.allowKeys({"name", "type", "g", "enabled"});
     fe.type = ForceType::Gravity;
     fe.vector = vec3(f["g"]);
+    // 1e6 m/s^2 is 1e5 g, beyond any centrifuge: a larger value is a unit mistake, and
+    // 1e300 made every reaction force infinite, refused only when the file was written.
+    if (fe.vector.cwiseAbs().maxCoeff() > 1e6)
+      f["g"].fail("expected components within 1e6 m/s^2 (SI units; beyond that is a unit mistake)");
   } else if (type == "rotational_spring_damper") {
     f.allowKeys({"name", "type", "joint", "damping", "torque", "enabled"});
     fe.type = ForceType::RotationalSpringDamper;

@@ -333,6 +333,11 @@ VabsModel parseVabs(const std::string& text, const std::string& name) {
     mat_index[id] = static_cast<int>(mesh.materials.size());
     mesh.materials.push_back(mat);
   }
+  // Numbers after the last material mean the records before were misread (a line
+  // given twice made a modulus the density and left the rest unread).
+  if (!ts.atEnd())
+    ts.fail("end of file", "unexpected numbers after the last material; expected " + std::to_string(nmate) +
+                               " material records and nothing after them");
 
   for (long e = 0; e < nelem; ++e) {
     SectionElement& el = mesh.elements[e];

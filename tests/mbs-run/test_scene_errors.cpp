@@ -51,6 +51,11 @@ TEST(SceneErrors, NamesThatAreNotResultsGroups) {
   expectError("bodies:\n  - {name: x/y, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}}\n" + kSim,
               {2, "bodies[0].name", "usable as a results group"});
 }
+TEST(SceneErrors, GravityBeyondPhysicalRange) {
+  // Fuzz campaign, seeds +200: g = 1e300 ran, then failed writing an infinite peak reaction.
+  expectError(kHead + "forces:\n  - {type: gravity, g: [0, 0, -1e300]}\n" + kSim,
+              {6, "forces[0].g", "within 1e6 m/s^2"});
+}
 TEST(SceneErrors, MissingMass) {
   expectError("bodies:\n  - name: b\n    rigid: {inertia: [[1,0,0],[0,1,0],[0,0,1]]}\n" + kSim,
               {3, "bodies[0].rigid", "mass"});

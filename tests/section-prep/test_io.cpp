@@ -110,6 +110,13 @@ TEST(VabsErrors, NameTheFileLineAndItem) {
   });
   EXPECT_NE(truncated.find("ends early"), std::string::npos) << truncated;
 
+  // A line given twice (fuzz campaign, seeds +200): E became the density and the rest
+  // went unread. Numbers left after the last material are an error at their line.
+  const std::string trailing = inputError([] {
+    parseVabs(std::string(kVabsHeader) + "1 1 2 3 4 0 0 0 0 0\n1 1 0\n1 1 0\n1 0\n1e9 0.3\n1e9 0.3\n1\n", "c.sg");
+  });
+  EXPECT_NE(trailing.find("c.sg:14: end of file: unexpected numbers after the last material"), std::string::npos) << trailing;
+
   const std::string bad_number = inputError([] {
     parseVabs(std::string(kVabsHeader) + "1 1 2 3 4 0 0 0 0 0\n1 1 0\n1 1 0\n1 0\n1e9 abc\n1\n", "c.sg");
   });
