@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "common/geo_script.h"
+#include "common/termination.h"
 #include "common/h5io.h"
 #include "common/input.h"
 #include "common/inspect.h"

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <exception>
-#include <new>
 #include <stdexcept>
 
 #include "common/files.h"
@@ -81,22 +80,6 @@ void checkGmshInput(const std::string& path) {
     } else {
       advance();
     }
-  }
-}
-
-std::string currentExceptionMessage() {
-  try {
-    throw;
-  } catch (const std::bad_alloc&) {
-    return "out of memory";
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (const std::string& s) {
-    return s;
-  } catch (const char* s) {
-    return s ? s : "unknown error";
-  } catch (...) {
-    return "unknown error";
   }
 }
 

@@ -16,8 +16,5 @@ void checkGmshInput(const std::string& path);
 // The refused .geo commands (for documentation and tests).
 const std::vector<std::string>& refusedGeoCommands();
 
-// Message of the exception being handled, whatever its type: gmsh throws
-// std::string, some libraries const char*. Call only inside a catch block.
-std::string currentExceptionMessage();
 
 }  // namespace fc

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <string>
 
 namespace fc {
@@ -72,25 +73,8 @@ extern "C" void onTerminationSignal(int sig) {
 
 std::string g_fatal_context;
 
-std::string exceptionMessage(std::exception_ptr p) {
-  if (!p) return "internal error (std::terminate without an exception)";
-  try {
-    std::rethrow_exception(p);
-  } catch (const std::bad_alloc&) {
-    return "out of memory";
-  } catch (const std::exception& e) {
-    return e.what();
-  } catch (const std::string& s) {
-    return s;
-  } catch (const char* s) {
-    return s ? s : "unknown error";
-  } catch (...) {
-    return "unknown error";
-  }
-}
-
 [[noreturn]] void onTerminate() {
-  const std::string msg = exceptionMessage(std::current_exception());
+  const std::string msg = currentExceptionMessage();
   for (auto& slot : g_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
   writeAll(g_prefix);
@@ -180,6 +164,24 @@ void TemporaryRegistration::release() {
   if (slot_ >= 0) {
     g_slots[slot_].state.store(0);
     slot_ = -1;
+  }
+}
+
+std::string currentExceptionMessage() {
+  const std::exception_ptr p = std::current_exception();
+  if (!p) return "internal error (std::terminate without an exception)";
+  try {
+    std::rethrow_exception(p);
+  } catch (const std::bad_alloc&) {
+    return "out of memory";
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (const std::string& s) {
+    return s;
+  } catch (const char* s) {
+    return s ? s : "unknown error";
+  } catch (...) {
+    return "unknown error";
   }
 }
 

@@ -42,6 +42,11 @@ void installTerminationHandlers(const std::string& tool, TerminationPolicy polic
 
 int terminationSignal();
 std::string signalName(int sig);
+
+// Message of the exception being handled, whatever its type: gmsh throws
+// std::string, some libraries const char*; std::bad_alloc is "out of memory".
+// Used in catch blocks and by the std::terminate handler.
+std::string currentExceptionMessage();
 inline int terminationExitCode(int sig) { return 128 + sig; }
 
 class Terminated : public std::runtime_error {

@@ -3,6 +3,7 @@
 #include <gmsh.h>
 
 #include "common/geo_script.h"
+#include "common/termination.h"
 
 #include <cmath>
 #include <map>

@@ -17,21 +17,10 @@ import sys
 import h5py
 import numpy as np
 
+from example_checks import attr, check, finish
+
 out = sys.argv[1]
 L, g, zeta = 1.0, 9.81, 0.05
-fails = []
-
-
-def attr(f, name):
-    v = f.attrs[name]
-    return v.decode() if isinstance(v, bytes) else v
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        fails.append(what)
-
 
 with h5py.File(f"{out}/tube.h5", "r") as s:
     EI = s["stiffness/timoshenko"][4, 4]
@@ -52,5 +41,4 @@ peak = -tip[:, 2].min()
 overshoot = 1 + math.exp(-math.pi * zeta / math.sqrt(1 - zeta * zeta))
 check(abs(peak / static - overshoot) < 0.03 * overshoot,
       f"first swing {peak * 1e3:.4f} mm = {peak / static:.3f} x static, single damped mode {overshoot:.3f}")
-print(f"{len(fails)} failure(s)")
-sys.exit(1 if fails else 0)
+finish()

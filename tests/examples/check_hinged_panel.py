@@ -16,20 +16,9 @@ import sys
 import h5py
 import numpy as np
 
+from example_checks import attr, check, finish
+
 out = sys.argv[1]
-fails = []
-
-
-def attr(f, name):
-    v = f.attrs[name]
-    return v.decode() if isinstance(v, bytes) else v
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        fails.append(what)
-
 
 with h5py.File(f"{out}/hinged-panel.h5", "r") as f:
     check(attr(f, "status") == "completed", f"status {attr(f, 'status')}")
@@ -57,5 +46,4 @@ p = subprocess.run(["mbs-run", "scene.yaml", "-o", f"{out}/bad.h5", "--animation
                    capture_output=True, text=True)
 check(p.returncode != 0 and ".pvd" in p.stderr and not os.path.exists(f"{out}/bad.h5"),
       f"animation name not .pvd: exit {p.returncode}, '{p.stderr.strip().splitlines()[0] if p.stderr.strip() else ''}'")
-print(f"{len(fails)} failure(s)")
-sys.exit(1 if fails else 0)
+finish()

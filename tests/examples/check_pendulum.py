@@ -15,23 +15,12 @@ import sys
 import h5py
 import numpy as np
 
+from example_checks import attr, check, finish
+
 out = sys.argv[1]
 m, L, d, g = 1.0, 1.0, 0.02, 9.81
 I = m * (L * L / 3 + d * d / 16)
 t_bottom = math.sqrt(I / (m * g * L / 2)) * 1.8540746773013719
-fails = []
-
-
-def attr(f, name):
-    v = f.attrs[name]
-    return v.decode() if isinstance(v, bytes) else v
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        fails.append(what)
-
 
 with h5py.File(f"{out}/pendulum.h5", "r") as f:
     check(attr(f, "status") == "completed", f"status {attr(f, 'status')}")
@@ -56,5 +45,4 @@ with h5py.File(f"{out}/pendulum.h5", "r") as f:
     check(balance < 1e-6, f"energy balance error {balance:.2e} J")
     dissipated = f["energy/dissipated"][-1]
     check(dissipated > 0.1, f"the damper dissipated {dissipated:.3f} J after the catch")
-print(f"{len(fails)} failure(s)")
-sys.exit(1 if fails else 0)
+finish()

@@ -14,6 +14,8 @@ import os
 import subprocess
 import sys
 
+from example_checks import check, finish
+
 study, work, build = sys.argv[1:4]
 out = os.path.join(work, "study")
 before = {f: os.path.getmtime(os.path.join(work, f)) for f in os.listdir(work) if f != "study"}
@@ -21,14 +23,6 @@ cmd = [sys.executable, study, "scene.yaml", "--out", out, "--tools", build, "--j
        "--vary", "rtol=1e-4,1e-7", "--vary", "modes:beam=2,6", "--vary", "mesh:beam=10,40",
        "--body-yaml", "beam=beam.yaml", "--channel", "bodies/beam/modal_coordinates"]
 subprocess.run(cmd, cwd=work, check=True)
-fails = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        fails.append(what)
-
 
 with open(os.path.join(out, "summary.csv")) as f:
     rows = {r["run"]: r for r in csv.DictReader(f)}
@@ -44,5 +38,4 @@ if {"mesh-beam=10", "mesh-beam=40"} <= set(rows):
 check(all(os.path.exists(os.path.join(out, f)) for f in ("study.md", "summary.csv")), "study.md and summary.csv written")
 after = {f: os.path.getmtime(os.path.join(work, f)) for f in os.listdir(work) if f != "study"}
 check(after == before, "nothing written outside --out")
-print(f"{len(fails)} failure(s)")
-sys.exit(1 if fails else 0)
+finish()

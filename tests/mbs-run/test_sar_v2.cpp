@@ -1,5 +1,5 @@
 // The rigid SAR antenna, reconstruction v2 (tests/data/sar/sar-rigid-scene-v2.yaml,
-// copied from ../shared/reference/sar-rigid-scene.yaml; the figures checked
+// copied from the project's shared reference folder (shared/reference/sar-rigid-scene.yaml); the figures checked
 // here are those of tests/data/sar/sar-antenna-model-v2.md), whole 20 s:
 // - phase 1: the knee B7/B8 has a regular minimum of 0.030 rad where hinge
 //   2/3 passes its turning point 0.0913 rad before coplanar, about 10 %
