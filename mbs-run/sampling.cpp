@@ -32,6 +32,12 @@ std::vector<std::string> samplingWarnings(const Model& m) {
                   m.settings.output_step, f_max, body.c_str(), 0.5 / f_max);
     w.push_back(buf);
   }
+  // A body named in outputs.stresses whose plies lack strengths gets its ply
+  // stresses but no failure index: say so rather than leave it to be missed.
+  for (const Body& b : m.bodies)
+    if (b.stress && b.stress->kind == BodyStressRecovery::Kind::Shell && b.stress->failure_output < 0)
+      w.push_back("outputs.stresses: body " + b.name + ": not every ply's material has `strength`, so its ply stresses "
+                  "are written but no failure_index");
   return w;
 }
 

@@ -209,6 +209,26 @@ TEST(StressScene, OutputsStressesErrorsAreLocated) {
   expect("[p, pp]", 1, "unknown body 'pp'");
   expect("[q]", 0, "no shell stress recovery data");
   expect("[p, p]", 1, "named twice");
+  // Plies without strengths: stresses, no failure index, and a warning.
+  {
+    fc::FlexBody b = fc::testing::randomBody(6, 3, 5);
+    b.elements["triangles"] = (fc::IndexMatrix(4, 3) << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5).finished();
+    b.stress.centroids = Eigen::MatrixXd::Random(4, 3);
+    b.stress.shell_strains = Eigen::MatrixXd::Random(24, 3) * 1e-3;
+    fc::Laminate lam;
+    lam.plies = {{"a", 0.001, 0.0}};
+    b.stress.plies = fc::plyTable(lam, materials("materials:\n  a: {type: isotropic, E: 70e9, nu: 0.3, rho: 2700}\n"));
+    const std::string weak = writeTempBody(b, "stress_scene_weak");
+    const Model mw = sceneFromText("bodies:\n  - {name: w, flexible: {file: " + weak +
+                                   "}}\nsimulation: {t_end: 0.1}\noutputs: {stresses: [w]}\n");
+    ASSERT_TRUE(mw.bodies[0].stress);
+    EXPECT_EQ(mw.bodies[0].stress->outputs.size(), 1u);
+    EXPECT_EQ(mw.bodies[0].stress->failure_output, -1);
+    const std::vector<std::string> warn = samplingWarnings(mw);
+    ASSERT_EQ(warn.size(), 1u);
+    EXPECT_NE(warn[0].find("no failure_index"), std::string::npos);
+    std::remove(weak.c_str());
+  }
   // Named: recovery set up with the file's data; not named: nothing at all.
   const Model m = sceneFromText(head + "outputs: {stresses: [p]}\n");
   ASSERT_TRUE(m.bodies[1].stress);
