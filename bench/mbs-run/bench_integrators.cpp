@@ -17,6 +17,7 @@
 #include <string>
 
 #include "../../tests/mbs-run/beam_body.h"
+#include "chain_scene.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
 
@@ -105,21 +106,10 @@ void chains() {
   std::printf("\n### C. Rigid chains of N rods on revolute joints (dopri5, rtol 1e-6)\n\n");
   std::printf("| N | rows | linear solver | us per rhs | us per rhs / N | sim time [s] | CPU s / sim s | steps | status |\n|---|---|---|---|---|---|---|---|---|\n");
   for (int n : {10, 50, 200, 1000}) {
-    std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
-    std::string j = "joints:\n";
-    for (int k = 0; k < n; ++k) {
-      y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
-           std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
-      const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
-      const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
-      j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
-           "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
-    }
     const double t_end = n <= 50 ? 0.2 : (n <= 200 ? 0.05 : 0.01);
     char sim[160];
-    std::snprintf(sim, sizeof sim, "simulation: {t_end: %g, output_step: %g, rtol: 1e-6, integrator: dopri5}\n", t_end,
-                  t_end / 10);
-    const std::string scene = y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\n" + sim;
+    std::snprintf(sim, sizeof sim, "{t_end: %g, output_step: %g, rtol: 1e-6, integrator: dopri5}", t_end, t_end / 10);
+    const std::string scene = fc::mbs::bench::rodChainScene(n, sim);
     const fc::mbs::Model m = fc::mbs::test::sceneFromText(scene);
     fc::mbs::System sys(m);
     Eigen::VectorXd yv = sys.initialState(), yd;

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "common/input.h"
+#include "chain_scene.h"
 #include "mbs-run/scene.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
@@ -68,18 +69,8 @@ BENCHMARK(SarRightHandSide)->Unit(benchmark::kMicrosecond);
 // joint-space factorisation stops paying (AlSolver::kMaxSchurRows).
 void ChainRightHandSide(benchmark::State& state) {
   const int n = int(state.range(0));
-  std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
-  std::string j = "joints:\n";
-  for (int k = 0; k < n; ++k) {
-    y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
-         std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
-    const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
-    const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
-    j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
-         "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
-  }
-  std::string scene = y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: {t_end: 1, linear_solver: " +
-                      std::string(state.range(1) ? "sparse" : "schur") + "}\n";
+  const std::string scene = fc::mbs::bench::rodChainScene(
+      n, std::string("{t_end: 1, linear_solver: ") + (state.range(1) ? "sparse" : "schur") + "}");
   const fc::mbs::Model m = fc::mbs::parseScene(fc::InputNode::loadString(scene, "chain.yaml"));
   fc::mbs::System sys(m);
   Eigen::VectorXd yv = sys.initialState(), yd;
