@@ -90,8 +90,7 @@ class ImexArk3 final : public Integrator {
         // estimate in the stiff modal components the ESDIRK damps anyway.
         err = weightedRmsNorm(solve(e), y_, y1, tol_);
       }
-      const double fac = std::isfinite(err) ? std::clamp(0.9 * std::pow(std::max(err, 1e-12), -1.0 / 3.0), 0.2, 5.0)
-                                            : 0.25;
+      const double fac = stepFactor3(err);
       if (err <= 1.0) {
         VectorXd f1(y_.size());
         f_(t_ + h, y1, f1);
@@ -104,9 +103,7 @@ class ImexArk3 final : public Integrator {
         fn_ = f1;
         have_dense_ = true;
         ++split_age_;
-        h_ = last_rejected_ ? std::min(h, h * fac) : h * fac;
-        // Growth below 20 % is not worth a new factorisation (as TR-BDF2).
-        if (h_ > h && h_ < 1.2 * h) h_ = h;
+        h_ = stepAfterAccept(h, fac, last_rejected_);
         last_rejected_ = false;
         ++steps;
         return true;
@@ -115,7 +112,7 @@ class ImexArk3 final : public Integrator {
       last_rejected_ = true;
       // A stale L leaves stiff terms in the explicit part: renew it first.
       if (split_age_ > 0) split_age_ = kSplitAge;
-      h_ = h * std::min(fac, 0.5);
+      h_ = stepAfterReject(h, fac);
     }
   }
 
@@ -125,9 +122,7 @@ class ImexArk3 final : public Integrator {
   // Cubic Hermite from the end values and slopes (third order, as the method).
   VectorXd interpolate(double t) const override {
     if (!have_dense_ || h_last_ <= 0.0) return y_;
-    const double s = (t - t_old_) / h_last_, s2 = s * s, s3 = s2 * s;
-    return (2 * s3 - 3 * s2 + 1) * y_old_ + (s3 - 2 * s2 + s) * h_last_ * fn_old_ + (-2 * s3 + 3 * s2) * y_ +
-           (s3 - s2) * h_last_ * fn_;
+    return cubicHermite(t, t_old_, h_last_, y_old_, fn_old_, y_, fn_);
   }
   std::string name() const override { return "imex"; }
 

@@ -82,7 +82,7 @@ class TrBdf2 final : public Integrator {
       // damps the stiff components as well.
       const VectorXd est = lu_.solve(h * ((kB1 - kW) * fn_ + (kB2 - kW) * fz + (kB3 - kD) * f1));
       const double err = errorNorm(est, y_, y1);
-      const double fac = std::clamp(0.9 * std::pow(std::max(err, 1e-12), -1.0 / 3.0), 0.2, 5.0);
+      const double fac = stepFactor3(err);
       if (err <= 1.0 && std::isfinite(err)) {
         t_old_ = t_;
         y_old_ = y_;
@@ -99,21 +99,14 @@ class TrBdf2 final : public Integrator {
         // (RADAU5 renews it above theta = 0.001; a Jacobian costs n
         // evaluations here, so the threshold is higher).
         if (theta_ > kThetaRenew) jac_valid_ = false;
-        // No growth right after a rejected error test (as DOPRI5 and RADAU5):
-        // otherwise the step oscillates about the accepted size, rejecting
-        // every few steps.
-        h_ = last_rejected_ ? std::min(h, h * fac) : h * fac;
-        // As RADAU5: growth below 20 % is not worth a new factorisation of
-        // the iteration matrix (on the flexible SAR's phase 2, 650 -> 416
-        // LU factorisations, each ~1 ms at 233 states).
-        if (h_ > h && h_ < 1.2 * h) h_ = h;
+        h_ = stepAfterAccept(h, fac, last_rejected_);
         last_rejected_ = false;
         ++steps;
         return true;
       }
       ++rejected;
       last_rejected_ = true;
-      h_ = h * (std::isfinite(err) ? std::min(fac, 0.5) : 0.25);
+      h_ = stepAfterReject(h, fac);
     }
   }
 
@@ -124,9 +117,7 @@ class TrBdf2 final : public Integrator {
   // above the method's second).
   VectorXd interpolate(double t) const override {
     if (!have_dense_ || h_last_ <= 0.0) return y_;
-    const double s = (t - t_old_) / h_last_, s2 = s * s, s3 = s2 * s;
-    return (2 * s3 - 3 * s2 + 1) * y_old_ + (s3 - 2 * s2 + s) * h_last_ * fn_old_ +
-           (-2 * s3 + 3 * s2) * y_ + (s3 - s2) * h_last_ * fn_;
+    return cubicHermite(t, t_old_, h_last_, y_old_, fn_old_, y_, fn_);
   }
   std::string name() const override { return "trbdf2"; }
 
