@@ -76,6 +76,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/stress/strains", "1 and 1/m per kg^1/2 m",
        "shells: membrane strains eps_xx eps_yy gamma_xy and curvatures kappa_xx kappa_yy kappa_xy at each element "
        "centroid per unit modal coordinate, laminate axes (n_modes, n_elements, 6)"},
+      {"flexbody", "/stress/section_resultants", "N and N m per kg^1/2 m",
+       "beams: section resultants N V2 V3 T M2 M3 at each element midpoint per unit modal coordinate, element "
+       "section axes (n_modes, n_elements, 6)"},
       {"flexbody", "/stress/plies/z_mid", "m", "shells: mid-thickness height of each ply from the mid-surface, bottom up (n_plies)"},
       {"flexbody", "/stress/plies/angle_deg", "deg", "shells: fibre angle of each ply from the laminate x axis (n_plies)"},
       {"flexbody", "/stress/plies/stiffness", "Pa",
@@ -106,6 +109,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"results", "/bodies/*/failure_index", "1",
        "outputs.stresses bodies with ply strengths: Tsai-Wu index of each ply at each element centroid, failure at 1 "
        "(n_out, n_elements, n_plies)"},
+      {"results", "/bodies/*/section_forces", "N, N m",
+       "outputs.stresses beam bodies: section forces N V2 V3 T M2 M3 at each element midpoint, element section axes "
+       "(n_out, n_elements, 6)"},
       {"results", "/joints/*/angle", "rad",
        "revolute angle: rotation of the second body relative to the first about the axis, unwrapped"},
       {"results", "/joints/*/reaction_force", "N", "joint reaction force on the first body, global"},

@@ -297,6 +297,13 @@ void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) 
   if (d.centroids.rows() != n_el || d.centroids.cols() != 3)
     throw std::invalid_argument(where + "centroids must be (n_elements, 3) = (" + str(n_el) + ", 3)");
   f.writeMatrix("/mesh/centroids", d.centroids);
+  if (d.hasBeam()) {
+    if (d.beam_resultants.rows() != 6 * n_el || d.beam_resultants.cols() != nm)
+      throw std::invalid_argument(where + "beam section resultants must be (6 n_elements, n_modes)");
+    // Column-major (6 n_el, nm) is C-order (nm, n_el, 6), as /modes/shapes.
+    writeArray(f, "/stress/section_resultants", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_el), 6},
+               d.beam_resultants.data());
+  }
   if (!d.hasShell()) return;
   const long np = d.plies.size();
   if (d.shell_strains.rows() != 6 * n_el || d.shell_strains.cols() != nm)
@@ -532,15 +539,21 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
   if (n_modes < 0 || n_modes > in_file)
     throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
                   " asked");
-  if (!f.exists("/mesh/centroids") || !f.exists("/stress/strains"))
-    throw H5Error(path + ": no shell stress recovery data (/mesh/centroids, /stress/strains); a shell body file "
-                  "written by this fe-prep has them (rebuild it)");
+  const bool beam = f.exists("/stress/section_resultants");
+  if (!f.exists("/mesh/centroids") || (!f.exists("/stress/strains") && !beam))
+    throw H5Error(path + ": no stress recovery data (/mesh/centroids with /stress/strains for shells or "
+                  "/stress/section_resultants for beams); a body file written by this fe-prep has them (rebuild it)");
   StressRecoveryData d;
   const std::vector<hsize_t> cs = f.shape("/mesh/centroids");
   if (cs.size() != 2 || cs[1] != 3) throw H5Error(path + ": /mesh/centroids must be (n_elements, 3), got " + dimsText(cs));
   const long ne = static_cast<long>(cs[0]);
   d.centroids = rowMajor(readLeading(f, "/mesh/centroids", {cs[0], 3}, {true, true}), ne, 3);
   const hsize_t um = static_cast<hsize_t>(n_modes);
+  if (beam) {
+    const std::vector<double> r = readLeading(f, "/stress/section_resultants", {um, cs[0], 6}, {false, true, true});
+    d.beam_resultants = Eigen::Map<const Eigen::MatrixXd>(r.data(), 6 * ne, n_modes);
+    return d;
+  }
   const std::vector<double> st = readLeading(f, "/stress/strains", {um, cs[0], 6}, {false, true, true});
   d.shell_strains = Eigen::Map<const Eigen::MatrixXd>(st.data(), 6 * ne, n_modes);
   const std::vector<hsize_t> zs = f.shape("/stress/plies/z_mid");

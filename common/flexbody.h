@@ -172,9 +172,9 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes = -1,
 
 // The stress recovery data of a body file for its first n_modes modes:
 // /mesh/centroids, and for shells /stress/strains (leading n_modes only) and
-// /stress/plies/*. H5Error naming the file when it has none (written before
-// stress recovery existed, or a beam's file read for shells) or when a
-// dataset is mis-shaped or not finite.
+// /stress/plies/*, for beams /stress/section_resultants (leading n_modes
+// only). H5Error naming the file when it has none (written before stress
+// recovery existed) or when a dataset is mis-shaped or not finite.
 StressRecoveryData readStressData(const std::string& path, int n_modes);
 
 }  // namespace fc

@@ -35,8 +35,14 @@ struct StressRecoveryData {
   // is the file's C-order (n_modes, n_elements, 6)). Empty for beams.
   Eigen::MatrixXd shell_strains;
   PlyTable plies;  // shells
+  // Beams: (6 n_elements, n_modes), row 6e + c is component c of element e's
+  // section resultants [N, V2, V3, T, M2, M3] at its midpoint, in its section
+  // axes, per unit modal coordinate (fc::fe::beamModalResultants; file C-order
+  // (n_modes, n_elements, 6), /stress/section_resultants). Empty for shells.
+  Eigen::MatrixXd beam_resultants;
   bool empty() const { return centroids.rows() == 0; }
   bool hasShell() const { return shell_strains.rows() > 0 && plies.size() > 0; }
+  bool hasBeam() const { return beam_resultants.rows() > 0; }
 };
 
 }  // namespace fc

@@ -104,7 +104,8 @@ class Stopwatch {
 // What stress recovery needs (docs/stresses.md): every element's centroid
 // (beams: midpoint) and, for shells, the generalised strains at the centroid
 // per mode, through the element's own strain operator (the one its stiffness
-// integrates), plus the ply table.
+// integrates), plus the ply table; for beams, the section resultants at the
+// midpoint per mode.
 StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes) {
   StressRecoveryData d;
   const long nm = shapes.cols();
@@ -133,6 +134,9 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
       const auto& b = mesh.beams[static_cast<std::size_t>(e)];
       d.centroids.row(e) = 0.5 * (mesh.nodes.row(b[0]) + mesh.nodes.row(b[1]));
     }
+    // Section resultants at the midpoints per mode, by the element's own
+    // equilibrium (fc::fe::beamMidpointResultants, docs/elements.md).
+    d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, kSectionX2, spec.beam->Ks, shapes);
   }
   return d;
 }

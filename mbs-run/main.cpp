@@ -95,6 +95,10 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
                 r.peak_failure_index.value, r.peak_failure_index.body.c_str(), r.peak_failure_index.element,
                 r.peak_failure_index.ply, r.peak_failure_index.time,
                 r.peak_failure_index.value >= 1.0 ? ": FAILURE (index >= 1)" : "");
+  if (r.peak_section_moment.found)
+    std::printf("  largest beam section bending moment %.4g N m (body %s, element %ld, 0-based; t = %.6g s)\n",
+                r.peak_section_moment.value, r.peak_section_moment.body.c_str(), r.peak_section_moment.element,
+                r.peak_section_moment.time);
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
   for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.smallest_distance.size(); ++k)

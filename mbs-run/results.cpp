@@ -297,6 +297,13 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     f.setAttribute("/", "peak_failure_index_element", r.peak_failure_index.element);
     f.setAttribute("/", "peak_failure_index_ply", r.peak_failure_index.ply);
   }
+  if (r.peak_section_moment.found) {
+    // Where and when the largest beam bending moment |(M2, M3)| occurs (element 0-based).
+    f.setAttribute("/", "peak_section_moment", r.peak_section_moment.value);
+    f.setAttribute("/", "peak_section_moment_time", r.peak_section_moment.time);
+    f.setAttribute("/", "peak_section_moment_body", r.peak_section_moment.body);
+    f.setAttribute("/", "peak_section_moment_element", r.peak_section_moment.element);
+  }
   f.setAttribute("/", "warnings", joined(r.warnings));
   f.setAttribute("/", "events", joined(r.event_log));
   f.setAttribute("/", "integrator_switches", joined(r.integrator_log));

@@ -5,6 +5,7 @@
 
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/flexible/modal.h"
+#include "mbs-run/flexible/section_forces.h"
 #include "mbs-run/stress_recovery.h"
 
 namespace fc::mbs {
@@ -43,6 +44,13 @@ void RunSummary::observe(const Model& m, const Sample& s) {
     const FailureLocation at = largestFailureIndex(*r, s.bodies[k].stress[static_cast<std::size_t>(r->failure_output)]);
     if (at.element >= 0 && (!peak_failure_index.found || at.value > peak_failure_index.value))
       peak_failure_index = {true, at.value, s.time, m.bodies[k].name, at.element, at.ply};
+  }
+  for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
+    const auto& r = m.bodies[k].stress;
+    if (!r || r->kind != BodyStressRecovery::Kind::Beam || s.bodies[k].stress.size() != r->outputs.size()) continue;
+    const SectionForcePeak at = largestSectionForces(s.bodies[k].stress[0]);
+    if (at.bending_element >= 0 && (!peak_section_moment.found || at.bending > peak_section_moment.value))
+      peak_section_moment = {true, at.bending, s.time, m.bodies[k].name, at.bending_element};
   }
   if (smallest_distance.size() != s.distances.size())
     smallest_distance.assign(s.distances.size(), Peak{std::numeric_limits<double>::infinity(), 0.0, ""});

@@ -49,6 +49,15 @@ struct RunSummary {
     long element = -1, ply = -1;
   };
   FailurePeak peak_failure_index;
+  // Largest bending moment |(M2, M3)| over the beam bodies with section
+  // forces (outputs.stresses), their elements (0-based) and output rows.
+  struct SectionMomentPeak {
+    bool found = false;
+    double value = 0.0, time = 0.0;  // [N m], [s]
+    std::string body;
+    long element = -1;
+  };
+  SectionMomentPeak peak_section_moment;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes

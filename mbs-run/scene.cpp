@@ -520,7 +520,7 @@ void parseStresses(const InputNode& list, Model& m) {
              "written by fe-prep");
     if (b.stress) n.fail("body '" + b.name + "' is named twice");
     try {
-      b.stress = loadShellStressRecovery(b.flex->file, b.modes);
+      b.stress = loadStressRecovery(b.flex->file, b.modes);
     } catch (const std::exception& e) {
       n.fail("cannot recover the stresses of body '" + b.name + "': " + e.what());
     }

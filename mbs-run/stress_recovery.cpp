@@ -5,6 +5,7 @@
 
 #include "common/flexbody.h"
 #include "common/h5io.h"
+#include "mbs-run/flexible/section_forces.h"
 
 namespace fc::mbs {
 
@@ -76,6 +77,10 @@ void BodyStressRecovery::recover(const Eigen::VectorXd& q, std::vector<Eigen::Ve
       }
       break;
     }
+    case Kind::Beam:
+      // Element-major (n_el, 6), the C order of /bodies/NAME/section_forces.
+      fields[0] = beamSectionForces(beam_resultants, q);
+      break;
   }
 }
 
@@ -97,8 +102,20 @@ std::shared_ptr<const BodyStressRecovery> shellStressRecovery(const StressRecove
   return r;
 }
 
-std::shared_ptr<const BodyStressRecovery> loadShellStressRecovery(const std::string& body_file, int n_modes) {
-  return shellStressRecovery(readStressData(body_file, n_modes), body_file);
+std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecoveryData& d, const std::string& file) {
+  if (!d.hasBeam()) throw std::invalid_argument(file + ": no beam section resultants");
+  auto r = std::make_shared<BodyStressRecovery>();
+  r->kind = BodyStressRecovery::Kind::Beam;
+  r->file = file;
+  r->n_elements = d.centroids.rows();
+  r->beam_resultants = d.beam_resultants;
+  r->outputs.push_back({"section_forces", {r->n_elements, 6}});
+  return r;
+}
+
+std::shared_ptr<const BodyStressRecovery> loadStressRecovery(const std::string& body_file, int n_modes) {
+  const StressRecoveryData d = readStressData(body_file, n_modes);
+  return d.hasBeam() ? beamStressRecovery(d, body_file) : shellStressRecovery(d, body_file);
 }
 
 FailureLocation largestFailureIndex(const BodyStressRecovery& r, const Eigen::VectorXd& f) {

@@ -66,7 +66,9 @@ struct StressOutput {
 };
 
 struct BodyStressRecovery {
-  enum class Kind { Shell };  // a beam variant adds its kind, data and branch
+  // Shell: ply stresses and failure indices; Beam: section forces
+  // (mbs-run/flexible/section_forces.h).
+  enum class Kind { Shell, Beam };
   Kind kind = Kind::Shell;
   std::string file;           // the body file, for messages
   long n_elements = 0;
@@ -80,13 +82,21 @@ struct BodyStressRecovery {
   Eigen::MatrixXd ply_operator;
   std::vector<TsaiWu> tsai_wu;
 
+  // Beams: (6 n_el, n_modes) midpoint section resultants per unit modal coordinate.
+  Eigen::MatrixXd beam_resultants;
+
   // fields[i] (outputs[i].size() values, C order) at modal coordinates q.
   void recover(const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>& fields) const;
 };
 
-// A shell body's recovery for its first n_modes modes from the data of its
-// file (readStressData). Throws fc::H5Error naming the file when it has none.
-std::shared_ptr<const BodyStressRecovery> loadShellStressRecovery(const std::string& body_file, int n_modes);
+// A body's recovery for its first n_modes modes from the data of its file
+// (readStressData): a shell's ply stresses, or a beam's section forces. Throws
+// fc::H5Error naming the file when it has none.
+std::shared_ptr<const BodyStressRecovery> loadStressRecovery(const std::string& body_file, int n_modes);
+
+// Beam recovery from data in memory: one output, "section_forces" (n_el, 6).
+std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecoveryData& data,
+                                                             const std::string& file = "");
 
 // Shell recovery from data in memory (tests, benchmarks).
 std::shared_ptr<const BodyStressRecovery> shellStressRecovery(const StressRecoveryData& data,

@@ -207,7 +207,7 @@ TEST(StressScene, OutputsStressesErrorsAreLocated) {
   };
   expect("[ground]", 0, "not flexible");
   expect("[p, pp]", 1, "unknown body 'pp'");
-  expect("[q]", 0, "no shell stress recovery data");
+  expect("[q]", 0, "no stress recovery data");
   expect("[p, p]", 1, "named twice");
   // Plies without strengths: stresses, no failure index, and a warning.
   {
