@@ -93,6 +93,9 @@ struct Joint {
   JointType type = JointType::Spherical;
   int body_i = -1, body_j = -1;               // indices into Model::bodies
   Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();  // body frames
+  // The flexible body's interface named as the point, empty for coordinates
+  // (its reaction stiffens the body: flexible/geometric_stiffening.h).
+  std::string interface_i, interface_j;
   // Axes and held directions of a body turn with the modal rotation at its point.
   PointShapes shapes_i, shapes_j;
   Vector3d axis_i = Vector3d::UnitZ(), axis_j = Vector3d::UnitZ();  // unit, body frames

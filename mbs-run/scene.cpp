@@ -214,6 +214,8 @@ Joint parseJoint(const Model& m, const InputNode& j) {
   if (!pts.isSequence() || pts.size() != 2) pts.fail("expected two points [on first body, on second body]");
   jt.point_i = pointRef(m, jt.body_i, pts.at(0), jt.shapes_i);
   jt.point_j = pointRef(m, jt.body_j, pts.at(1), jt.shapes_j);
+  if (pts.at(0).isScalar()) jt.interface_i = pts.at(0).asString();
+  if (pts.at(1).isScalar()) jt.interface_j = pts.at(1).asString();
   const bool needs_axes = jt.type == JointType::Revolute || jt.type == JointType::Universal ||
                           jt.type == JointType::Cylindrical || jt.type == JointType::Prismatic;
   if (needs_axes) {

@@ -257,12 +257,25 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
       acceleration_stiffening = acceleration_stiffening || b.flex->stiffening->acceleration_cases;
     }
   }
+  // Interface cases of a joint's point on a stiffened body; null if none.
+  auto interfaceCases = [&](int body, const std::string& name) -> const std::array<Eigen::MatrixXd, 6>* {
+    const Body& b = model_.bodies[static_cast<std::size_t>(body)];
+    if (name.empty() || b.fixed || b.modes == 0 || !b.flex->stiffening) return nullptr;
+    const auto it = b.flex->stiffening->interfaces.find(name);
+    return it == b.flex->stiffening->interfaces.end() ? nullptr : &it->second;
+  };
+  bool interface_stiffening = false;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (joints_[j].enabled && (interfaceCases(jt.body_i, jt.interface_i) || interfaceCases(jt.body_j, jt.interface_j)))
+      interface_stiffening = true;
+  }
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
   const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
   AlResult r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
                                      model_.settings.multiplier_iterations);
-  if (acceleration_stiffening) {
+  if (acceleration_stiffening || interface_stiffening) {
     // Geometric stiffening by the frame's acceleration and angular acceleration:
     // taken from this first solve, then solved once more with them (their
     // change of the accelerations is of second order in w).
@@ -278,6 +291,29 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
       const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, false, true) * P_[k].modal;
       Q.segment(b.dof_index + 6, b.modes) -= f;
       stiffening_power -= P_[k].modal_rate.dot(f);
+    }
+    // Loads applied at interfaces: the force and moment a joint exerts on the
+    // body at its interface point, body axes, from this first solve's
+    // multipliers (the generalised force -J^T lambda: global force, then the
+    // moment about the frame origin in body axes, s x F + M).
+    for (std::size_t j = 0; j < model_.joints.size() && interface_stiffening; ++j) {
+      const Joint& jt = model_.joints[j];
+      if (!joints_[j].enabled) continue;
+      for (int side = 0; side < 2; ++side) {
+        const int k = side ? jt.body_j : jt.body_i;
+        const std::array<Eigen::MatrixXd, 6>* K = interfaceCases(k, side ? jt.interface_j : jt.interface_i);
+        if (!K) continue;
+        const ConstraintRows& rows = joint_rows_[j];
+        const VectorXd Qj = -((side ? rows.Jj : rows.Ji).transpose() * r.lambda.segment(row_of_joint_[j], rows.size()));
+        const Body& b = model_.bodies[static_cast<std::size_t>(k)];
+        const Vector3d F = P_[k].A.transpose() * Qj.head<3>();
+        const Vector3d at = (side ? jt.point_j : jt.point_i) + (side ? jt.shapes_j.psi : jt.shapes_i.psi) * P_[k].modal;
+        const Vector3d M = Qj.segment<3>(3) - at.cross(F);
+        VectorXd f = VectorXd::Zero(b.modes);
+        for (int c = 0; c < 3; ++c) f += (F(c) * (*K)[c] + M(c) * (*K)[3 + c]) * P_[k].modal;
+        Q.segment(b.dof_index + 6, b.modes) -= f;
+        stiffening_power -= P_[k].modal_rate.dot(f);
+      }
     }
     r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
                               model_.settings.multiplier_iterations);

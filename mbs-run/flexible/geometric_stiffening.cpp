@@ -29,6 +29,22 @@ GeometricStiffening readGeometricStiffening(const std::string& file, int modes) 
       throw std::invalid_argument(file + ": " + path + " case " + std::to_string(c) + " is not symmetric");
     if ((c < 3 || c >= 9) && g.K[c].size() > 0 && g.K[c].cwiseAbs().maxCoeff() > 0.0) g.acceleration_cases = true;
   }
+  const std::string group = "/geometric_stiffness/interfaces";
+  if (f.exists(group))
+    for (const std::string& name : f.children(group)) {
+      const std::string p = group + "/" + name + "/matrices";
+      const std::vector<hsize_t> s = f.shape(p);
+      if (s.size() != 3 || s[0] != 6 || s[1] != s[2] || s[1] != shape[1])
+        throw H5Error(file + ": " + p + " must be (6, " + std::to_string(n) + ", " + std::to_string(n) + ")");
+      const std::vector<double> v = f.readArray(p);
+      auto& K = g.interfaces[name];
+      for (int c = 0; c < 6; ++c) {
+        K[c] = Eigen::Map<const Eigen::MatrixXd>(v.data() + static_cast<std::size_t>(c) * n * n, n, n).topLeftCorner(modes, modes);
+        if (!K[c].allFinite()) throw std::invalid_argument(file + ": " + p + " holds non-finite values");
+        if ((K[c] - K[c].transpose()).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + K[c].cwiseAbs().maxCoeff()))
+          throw std::invalid_argument(file + ": " + p + " case " + std::to_string(c) + " is not symmetric");
+      }
+    }
   return g;
 }
 

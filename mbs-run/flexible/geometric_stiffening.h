@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <map>
 #include <string>
 
 namespace fc::mbs {
@@ -23,6 +24,12 @@ using StiffeningParameters = Eigen::Matrix<double, 12, 1>;
 struct GeometricStiffening {
   std::array<Eigen::MatrixXd, 12> K;  // (nm, nm) per case, the file's order
   bool acceleration_cases = false;    // some a0 or alpha case is non-zero (then a second solve is needed)
+  // Loads applied at interfaces (/geometric_stiffness/interfaces/NAME/matrices):
+  // per interface the (nm, nm) matrices of a unit force x y z and moment x y z
+  // in body axes at its point; the factors are the force and moment the body
+  // receives there from the joints attached to it (mbs-run/system.cpp, from the
+  // multipliers of a first solve, as the acceleration cases).
+  std::map<std::string, std::array<Eigen::MatrixXd, 6>> interfaces;
 };
 
 // The leading (modes, modes) block of each case of /geometric_stiffness/matrices.

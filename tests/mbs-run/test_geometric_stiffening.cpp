@@ -128,6 +128,81 @@ SpinFrequencies spinRod(const fc::FlexBody& body, const std::string& file, int m
   return out;
 }
 
+TEST(GeometricStiffening, TipMassPullsTheSpinningRodThroughItsJoint) {
+  // The rod spinning at Omega = omega_0 with a point mass M joined to its tip
+  // interface (spherical joint): the joint's reaction M Omega^2 L tensions the
+  // whole rod, through the tip interface's load cases and the multipliers. The
+  // flapwise frequency of the run against the rotating-beam eigen-analysis with
+  // the tip mass (rotating_beam_reference.h: mass M at the tip, T += M Omega^2 L).
+  const int kModes = 8;
+  const feprep::BuildResult b = feprep::test::runYaml(rod(40, kModes));
+  const std::string file = writeTempBody(b.body, "geostiff_rod_tipmass");
+  const double L = 2.0, d = 0.02, A = M_PI * d * d / 4, rhoA = 7850 * A, EI = 210e9 * M_PI * std::pow(d, 4) / 64;
+  const double w0 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  const double Om = w0, M = 2.0;  // the rod weighs 4.93 kg
+  // Linearised flapwise modal equations about steady spin: mass I + M Psi_z^T Psi_z
+  // (the tip), stiffness Lambda + Omega^2 (K_wzwz - L/2 K_ax) + M Omega^2 L K_tip,fx.
+  const FlexInterface& tip = b.body.interface("tip");
+  const Eigen::MatrixXd Psi = tip.shapes.topRows(kModes).leftCols(3).transpose();
+  Eigen::MatrixXd K = b.body.eigenvalues.head(kModes).asDiagonal();
+  K += Om * Om * (b.body.geometric_stiffness[5] - 0.5 * L * b.body.geometric_stiffness[0]);
+  K += M * Om * Om * L * tip.geometric_stiffness[0];
+  const Eigen::MatrixXd Mm = Eigen::MatrixXd::Identity(kModes, kModes) + M * Psi.row(2).transpose() * Psi.row(2);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, Mm);
+  // Start in the lowest mode that moves the tip in z.
+  Eigen::VectorXd q0;
+  for (int j = 0; j < kModes && q0.size() == 0; ++j) {
+    const Eigen::Vector3d u = Psi * es.eigenvectors().col(j);
+    if (std::abs(u.z()) > 10 * std::abs(u.y())) q0 = 1e-3 * es.eigenvectors().col(j) / u.z();
+  }
+  ASSERT_EQ(q0.size(), kModes);
+  std::string q = "[";
+  for (long j = 0; j < q0.size(); ++j) q += (j ? ", " : "") + std::to_string(q0(j));
+  q += "]";
+  const double period = 2 * M_PI / w0;
+  const Eigen::Vector3d u0 = Psi * q0;  // the mass starts on the displaced tip
+  char text[2000];
+  std::snprintf(text, sizeof text, R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - name: rod
+    flexible: {file: %s, modes: %d, geometric_stiffening: true}
+    position: [1.0, 0, 0]
+    velocity: [0, %.17g, 0]
+    angular_velocity: [0, 0, %.17g]
+    modal_coordinates: %s
+  - name: tip_mass
+    rigid: {mass: %g, inertia: [[1.0e-4,0,0],[0,1.0e-4,0],[0,0,1.0e-4]]}
+    position: [%.17g, %.17g, %.17g]
+    velocity: [0, %.17g, 0]
+joints:
+  - {name: hub, type: revolute, bodies: [ground, rod], points: [[0, 0, 0], root], axes: [[0, 0, 1], [0, 0, 1]],
+     drive: {angle0: 0.0, speed: %.17g}}
+  - {name: pin, type: spherical, bodies: [rod, tip_mass], points: [tip, [0, 0, 0]]}
+simulation: {t_end: %g, output_step: 0.0005, rtol: 1.0e-9, integrator: dopri5}
+)",
+                file.c_str(), kModes, Om, Om, q.c_str(), M, 2.0 + u0.x(), u0.y(), u0.z(), (2.0 + u0.x()) * Om, Om,
+                8 * period);
+  const Results r = simulate(sceneFromText(text), {true});
+  ASSERT_EQ(r.status, "completed");
+  std::vector<double> z;
+  for (const auto& w : r.modal[1]) z.push_back((Psi * w).z());
+  const double flap = crossingFrequency(r.time, z);
+  const double ref = fc::test::rotatingBeamFrequencies(L, EI, rhoA, Om, false, 80, 1, 0.0, 0.0, M)(0);
+  const double no_pull = fc::test::rotatingBeamFrequencies(L, EI, rhoA, Om, false, 80, 1)(0);
+  // The same linearised model without the joint's pull (mass at the tip, no tension from it).
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> loose(K - M * Om * Om * L * tip.geometric_stiffness[0], Mm);
+  const double unpulled = std::sqrt(loose.eigenvalues()(0));
+  std::printf("[   info   ] tip mass %.1f kg at Omega = omega_0: flap %.5f rad/s (linearised %.5f, reference %.5f; "
+              "without the joint's pull %.5f; the bare rod %.5f)\n", M, flap, std::sqrt(es.eigenvalues()(0)), ref,
+              unpulled, no_pull);
+  // Budget as the spinning rod's (40 lumped-mass elements, 8 modes, the
+  // crossing count over ~8 periods at 0.5 ms): 2e-3; the issue asks for 1 %.
+  EXPECT_NEAR(flap / ref, 1.0, 2e-3);
+  // The pull matters far beyond that budget, so the check sees the interface cases.
+  EXPECT_GT(std::abs(unpulled / ref - 1.0), 10 * 2e-3);
+}
+
 TEST(GeometricStiffening, SpinningCantileverFlapAndLagFrequencies) {
   // 8 modes (4 bending pairs): with 4 the lag frequency at 2 omega_0 is 1 % high
   // (the stiffened shape needs the higher modes; measured).
