@@ -5,11 +5,8 @@
 #include "fe-prep/elements/beam_flexibility.h"
 
 namespace fc::fe {
-namespace {
-
-// The element's section axes: R (rows e1, e2, e3; v_local = R v_body) and its length.
-Eigen::Matrix3d sectionAxes(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, const Eigen::Vector3d& section_x2,
-                            double& L) {
+Eigen::Matrix3d beamSectionAxes(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb, const Eigen::Vector3d& section_x2,
+                                double& L) {
   const Eigen::Vector3d axis = xb - xa;
   L = axis.norm();
   if (!(L > 0.0)) throw std::invalid_argument("beam element: coincident end nodes");
@@ -27,20 +24,18 @@ Eigen::Matrix3d sectionAxes(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
   return R;
 }
 
-Matrix12d blockRotation(const Eigen::Matrix3d& R) {
+Matrix12d beamBlockRotation(const Eigen::Matrix3d& R) {
   Matrix12d T = Matrix12d::Zero();
   for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = R;
   return T;
 }
 
-}  // namespace
-
 BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
                             const Eigen::Vector3d& section_x2, const Matrix6d& Ks,
                             const Matrix6d& Ms) {
   double L = 0.0;
-  const Eigen::Matrix3d R = sectionAxes(xa, xb, section_x2, L);  // v_local = R v_body
-  const Matrix12d T = blockRotation(R);
+  const Eigen::Matrix3d R = beamSectionAxes(xa, xb, section_x2, L);  // v_local = R v_body
+  const Matrix12d T = beamBlockRotation(R);
 
   const UniformBeam beam(Ks, L);
   BeamMatrices out;
@@ -64,8 +59,8 @@ BeamMatrices timoshenkoBeam(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb
 Eigen::Matrix<double, 6, 12> beamMidpointResultants(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
                                                     const Eigen::Vector3d& section_x2, const Matrix6d& Ks) {
   double L = 0.0;
-  const Eigen::Matrix3d R = sectionAxes(xa, xb, section_x2, L);
-  return UniformBeam(Ks, L).sectionForces(0.5 * L) * blockRotation(R);
+  const Eigen::Matrix3d R = beamSectionAxes(xa, xb, section_x2, L);
+  return UniformBeam(Ks, L).sectionForces(0.5 * L) * beamBlockRotation(R);
 }
 
 Eigen::MatrixXd beamModalResultants(const Eigen::MatrixXd& nodes, const std::vector<std::array<long, 2>>& beams,

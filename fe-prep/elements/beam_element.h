@@ -20,6 +20,15 @@ struct BeamMatrices {
   Vector12d lumped;  // diagonal (lumped) mass: 3 translational + 3 rotary per node
 };
 
+// The element's section axes as rows e1 (xa to xb), e2 (section_x2 orthogonalised),
+// e3 = e1 x e2, so that v_local = R v_body; L returns the length. Throws on
+// coincident nodes or a section_x2 parallel to the axis.
+Eigen::Matrix3d beamSectionAxes(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
+                                const Eigen::Vector3d& section_x2, double& L);
+
+// R on each of the four 3-vectors of the 12 nodal DOF (u_a, theta_a, u_b, theta_b).
+Matrix12d beamBlockRotation(const Eigen::Matrix3d& R);
+
 // xa, xb: end nodes (body frame); section_x2: direction of the section's x2 axis
 // (any vector not parallel to the beam; it is orthogonalised). Ks, Ms: section
 // stiffness and mass per unit length about the section origin on the beam axis.

@@ -22,19 +22,8 @@ Eigen::Matrix4d planeGeometricStiffness(double L, double phi) {
 
 Matrix12d beamGeometricStiffness(const Eigen::Vector3d& xa, const Eigen::Vector3d& xb,
                                  const Eigen::Vector3d& section_x2, const Matrix6d& Ks, double N) {
-  const Eigen::Vector3d axis = xb - xa;
-  const double L = axis.norm();
-  if (!(L > 0.0)) throw std::invalid_argument("beam element: coincident end nodes");
-  const Eigen::Vector3d e1 = axis / L;
-  const Eigen::Vector3d p = section_x2 - section_x2.dot(e1) * e1;
-  if (p.norm() < 1e-3 * section_x2.norm() || !(section_x2.norm() > 0.0))
-    throw std::invalid_argument("beam element: section_x2 is parallel to the beam axis");
-  const Eigen::Vector3d e2 = p.normalized();
-  const Eigen::Vector3d e3 = e1.cross(e2);
-  Eigen::Matrix3d R;  // v_local = R v_body
-  R.row(0) = e1.transpose();
-  R.row(1) = e2.transpose();
-  R.row(2) = e3.transpose();
+  double L = 0.0;
+  const Eigen::Matrix3d R = beamSectionAxes(xa, xb, section_x2, L);  // v_local = R v_body
 
   // Shear parameters from the compliance (VABS order: 1 = shear x2, 2 = shear x3,
   // 4 = bending about x2 (displacement u3), 5 = bending about x3 (u2)).
@@ -53,8 +42,7 @@ Matrix12d beamGeometricStiffness(const Eigen::Vector3d& xa, const Eigen::Vector3
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) local(d3[i], d3[j]) += s3[i] * s3[j] * k3(i, j);
 
-  Matrix12d T = Matrix12d::Zero();
-  for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = R;
+  const Matrix12d T = beamBlockRotation(R);
   return N * (T.transpose() * local * T);
 }
 
