@@ -299,9 +299,6 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (b.has("geometric_stiffness")) {
     spec.geometric_stiffness_node = b["geometric_stiffness"];
     spec.geometric_stiffness = b["geometric_stiffness"].asBool();
-    if (spec.geometric_stiffness && spec.shell)
-      b["geometric_stiffness"].fail("geometric stiffness is implemented for beam bodies only (the shells' membrane-stress "
-                                    "geometric stiffness is not); remove the key or model the body as a beam");
     if (spec.geometric_stiffness && spec.reference.empty())
       b["geometric_stiffness"].fail("geometric stiffness needs a reference that holds the body (reference: {clamp: [...]}): "
                                     "the stress of the inertial loads is the static response of the held body");

@@ -524,8 +524,14 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     // The stress of the inertial loads is the static response of the held body.
     if (rigid.cols() > 0)
       spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
-    body.geometric_stiffness =
-        modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, kSectionX2, spec.beam->Ks, body.shapes);
+    StressStiffnessModel model;
+    if (spec.beam) model.Ks = &spec.beam->Ks;
+    model.section_x2 = kSectionX2;
+    if (spec.shell) {
+      model.laminate = &spec.shell->laminate;
+      model.kind = spec.shell->kind;
+    }
+    body.geometric_stiffness = modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, model, body.shapes);
     // Loads applied at the interfaces (joint reactions, force elements); an
     // interface the reference holds passes its loads straight to the support.
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
@@ -533,8 +539,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
                                     [&](const auto& r) { return r.set == mesh_interfaces[k].name; });
       if (!held)
         body.interfaces[k].geometric_stiffness =
-            interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh), kSectionX2,
-                                        spec.beam->Ks, body.shapes);
+            interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh), model,
+                                        body.shapes);
     }
   }
   for (std::size_t k = 0; k < body.interfaces.size(); ++k) {

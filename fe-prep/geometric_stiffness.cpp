@@ -1,7 +1,10 @@
 #include "fe-prep/geometric_stiffness.h"
 
+#include <stdexcept>
+
 #include "fe-prep/elements/beam_element.h"
 #include "fe-prep/elements/beam_geometric_stiffness.h"
+#include "fe-prep/elements/shell_geometric_stiffness.h"
 #include "fe-prep/static_response.h"
 
 namespace fc::feprep {
@@ -69,18 +72,89 @@ std::vector<Eigen::MatrixXd> projectBeamGeometricStiffness(const Mesh& mesh, con
   return out;
 }
 
+namespace {
+
+Eigen::Matrix3d triangleCoordinates(const Mesh& mesh, std::size_t e) {
+  Eigen::Matrix3d xyz;
+  for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[e][static_cast<std::size_t>(i)]);
+  return xyz;
+}
+
+}  // namespace
+
+Eigen::MatrixXd shellMembraneForces(const Mesh& mesh, const StressStiffnessModel& model, const Eigen::MatrixXd& u) {
+  const long ne = static_cast<long>(mesh.triangles.size());
+  Eigen::MatrixXd N(3 * ne, u.cols());
+  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
+  for (long e = 0; e < ne; ++e) {
+    const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
+    const Eigen::Matrix<double, 6, 18> G = fe::shellStrainOperator(triangleCoordinates(mesh, static_cast<std::size_t>(e)),
+                                                                   *model.laminate, model.kind, model.material_x, centre);
+    Eigen::Matrix<double, 3, 6> AB;
+    AB << model.laminate->A, model.laminate->B;
+    const Eigen::Matrix<double, 3, 18> NG = AB * G;  // shellMembraneForces, once for all cases
+    for (long c = 0; c < u.cols(); ++c) {
+      fe::Vector18d q;
+      q << u.col(c).segment<6>(6 * t[0]), u.col(c).segment<6>(6 * t[1]), u.col(c).segment<6>(6 * t[2]);
+      N.block<3, 1>(3 * e, c) = NG * q;
+    }
+  }
+  return N;
+}
+
+std::vector<Eigen::MatrixXd> projectShellGeometricStiffness(const Mesh& mesh, const StressStiffnessModel& model,
+                                                            const Eigen::MatrixXd& membrane,
+                                                            const Eigen::MatrixXd& shapes) {
+  const long nm = shapes.cols();
+  std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(membrane.cols()), Eigen::MatrixXd::Zero(nm, nm));
+  Eigen::MatrixXd Pe(18, nm);
+  for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+    const auto& t = mesh.triangles[e];
+    Pe << shapes.middleRows(6 * t[0], 6), shapes.middleRows(6 * t[1], 6), shapes.middleRows(6 * t[2], 6);
+    // Linear in N: project the three unit matrices once, combine per case.
+    const std::array<fe::Matrix18d, 3> units =
+        fe::shellGeometricStiffnessUnits(triangleCoordinates(mesh, e), *model.laminate, model.kind, model.material_x);
+    const long row = 3 * static_cast<long>(e);
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::MatrixXd unit = Pe.transpose() * units[static_cast<std::size_t>(j)] * Pe;
+      for (long c = 0; c < membrane.cols(); ++c) out[static_cast<std::size_t>(c)] += membrane(row + j, c) * unit;
+    }
+  }
+  for (auto& k : out) k = 0.5 * (k + k.transpose()).eval();
+  return out;
+}
+
+std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+                                                        const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
+                                                        const Eigen::MatrixXd& shapes) {
+  const Eigen::MatrixXd u = solveStatic(comm, K, map, loads);
+  const long nm = shapes.cols();
+  std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(loads.cols()), Eigen::MatrixXd::Zero(nm, nm));
+  auto add = [&](const std::vector<Eigen::MatrixXd>& part) {
+    for (std::size_t c = 0; c < out.size(); ++c) out[c] += part[c];
+  };
+  if (!mesh.beams.empty()) {
+    if (!model.Ks) throw std::logic_error("geometric stiffness: beam elements without a section stiffness");
+    add(projectBeamGeometricStiffness(mesh, model.section_x2, *model.Ks,
+                                      beamAxialForces(mesh, model.section_x2, *model.Ks, u), shapes));
+  }
+  if (!mesh.triangles.empty()) {
+    if (!model.laminate) throw std::logic_error("geometric stiffness: shell elements without a laminate");
+    add(projectShellGeometricStiffness(mesh, model, shellMembraneForces(mesh, model, u), shapes));
+  }
+  return out;
+}
+
 std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
-                                                     const Eigen::VectorXd& lumped, const Eigen::Vector3d& section_x2,
-                                                     const Matrix6d& Ks, const Eigen::MatrixXd& shapes) {
-  const Eigen::MatrixXd u = solveStatic(comm, K, map, inertialLoadCases(mesh.nodes, lumped));
-  return projectBeamGeometricStiffness(mesh, section_x2, Ks, beamAxialForces(mesh, section_x2, Ks, u), shapes);
+                                                     const Eigen::VectorXd& lumped, const StressStiffnessModel& model,
+                                                     const Eigen::MatrixXd& shapes) {
+  return loadCaseGeometricStiffness(comm, mesh, map, K, inertialLoadCases(mesh.nodes, lumped), model, shapes);
 }
 
 std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
-                                                         const Eigen::MatrixXd& loads, const Eigen::Vector3d& section_x2,
-                                                         const Matrix6d& Ks, const Eigen::MatrixXd& shapes) {
-  const Eigen::MatrixXd u = solveStatic(comm, K, map, loads);
-  return projectBeamGeometricStiffness(mesh, section_x2, Ks, beamAxialForces(mesh, section_x2, Ks, u), shapes);
+                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
+                                                         const Eigen::MatrixXd& shapes) {
+  return loadCaseGeometricStiffness(comm, mesh, map, K, loads, model, shapes);
 }
 
 }  // namespace fc::feprep

@@ -12,7 +12,8 @@
 // acceleration (0, -s_y, -s_z), the case w_x w_y is (s_y, s_x, 0)). For each unit
 // case c fe-prep solves the static response of the body held by its reference
 // condition, K u_c = f_c, takes the stress state it causes (beams: the axial
-// force N_e = axial end force of K_e u_e), and projects the element geometric
+// force N_e = axial end force of K_e u_e; shells: the membrane resultants
+// [N_xx N_yy N_xy] of every triangle), and projects the element geometric
 // stiffness of that stress state on the modes: K_c = Phi^T K_G(sigma_c) Phi.
 // mbs-run adds sum_c p_c(t) K_c to the modal stiffness (mbs-run/flexible/
 // geometric_stiffening.h). This is SIMPACK's first-order SID term (Wallrapp,
@@ -27,7 +28,9 @@
 #include <vector>
 
 #include "common/flexbody.h"
+#include "common/laminate.h"
 #include "common/materials.h"
+#include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mesh.h"
 #include "fe-prep/reference_conditions.h"
 
@@ -56,21 +59,46 @@ std::vector<Eigen::MatrixXd> projectBeamGeometricStiffness(const Mesh& mesh, con
                                                            const Matrix6d& Ks, const Eigen::MatrixXd& axial,
                                                            const Eigen::MatrixXd& shapes);
 
-// The whole step for a beam body: unit inertial cases on the lumped masses,
-// static solve with the reference-held stiffness K (map), axial forces,
-// projection on the shapes (6 n, n_modes).
+// What the stress state and the geometric stiffness need of the body's
+// elements: the beams' section stiffness and axes, the shells' laminate.
+struct StressStiffnessModel {
+  const Matrix6d* Ks = nullptr;  // beams (required when the mesh has beams)
+  Eigen::Vector3d section_x2 = Eigen::Vector3d::UnitY();
+  const LaminateStiffness* laminate = nullptr;  // shells (required when the mesh has triangles)
+  fe::ShellKind kind = fe::ShellKind::DST;
+  Eigen::Vector3d material_x = Eigen::Vector3d::UnitX();
+};
+
+// Membrane resultants of every triangle (3 n_tri, n_cases): rows 3e..3e+2 are
+// [N_xx N_yy N_xy] of triangle e in its laminate axes, under u (6 n, n_cases).
+Eigen::MatrixXd shellMembraneForces(const Mesh& mesh, const StressStiffnessModel& model, const Eigen::MatrixXd& u);
+
+// K_c = Phi^T K_G(N_c) Phi of the shell triangles (shell_geometric_stiffness.h)
+// for each case's membrane resultants (3 n_tri, n_cases).
+std::vector<Eigen::MatrixXd> projectShellGeometricStiffness(const Mesh& mesh, const StressStiffnessModel& model,
+                                                            const Eigen::MatrixXd& membrane,
+                                                            const Eigen::MatrixXd& shapes);
+
+// The static response of the reference-held body (K, map) to the load cases
+// (6 n, n_cases), its stress state and the projection on the shapes (6 n,
+// n_modes), beams and shells summed. Returns n_cases symmetric matrices.
+std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+                                                        const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
+                                                        const Eigen::MatrixXd& shapes);
+
+// The inertial cases: unit inertial loads on the lumped masses (6 n).
 std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
-                                                     const Eigen::VectorXd& lumped, const Eigen::Vector3d& section_x2,
-                                                     const Matrix6d& Ks, const Eigen::MatrixXd& shapes);
+                                                     const Eigen::VectorXd& lumped, const StressStiffnessModel& model,
+                                                     const Eigen::MatrixXd& shapes);
 
 // The geometric stiffness of loads applied at an interface (joint reactions,
 // force elements): the six unit cases force x, y, z and moment x, y, z in body
 // axes at the interface's reference point, reaching the nodes through its
 // coupling as f = L^T e_k (interfaceLoads, the same loads as static_response),
-// then the same static solve, axial forces and projection as the inertial
+// then the same static solve, stress state and projection as the inertial
 // cases. loads: (6 n, 6). Returns 6 symmetric (n_modes, n_modes) matrices.
 std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
-                                                         const Eigen::MatrixXd& loads, const Eigen::Vector3d& section_x2,
-                                                         const Matrix6d& Ks, const Eigen::MatrixXd& shapes);
+                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
+                                                         const Eigen::MatrixXd& shapes);
 
 }  // namespace fc::feprep

@@ -66,6 +66,20 @@ DiscretePlateTriangle::DiscretePlateTriangle(const TriangleGeometry& g,
   }
 }
 
+Eigen::Matrix<double, 2, 9> DiscretePlateTriangle::rotation(const Eigen::Vector3d& L) const {
+  Eigen::Matrix<double, 2, 9> beta = Eigen::Matrix<double, 2, 9>::Zero();
+  for (int i = 0; i < 3; ++i) {
+    beta(0, 3 * i + 2) = L(i);   // beta_x = theta_y
+    beta(1, 3 * i + 1) = -L(i);  // beta_y = -theta_x
+  }
+  for (int k = 0; k < 3; ++k) {
+    const double P = 4.0 * L(k) * L((k + 1) % 3);
+    beta.row(0) += P * g_.tangent(k, 0) * H_.row(k);
+    beta.row(1) += P * g_.tangent(k, 1) * H_.row(k);
+  }
+  return beta;
+}
+
 Eigen::Matrix<double, 2, 9> DiscretePlateTriangle::shearStrain(const Eigen::Vector3d& L) const {
   if (!shear_) return Eigen::Matrix<double, 2, 9>::Zero();
   const Eigen::Vector2d x =

@@ -34,6 +34,10 @@ class DiscretePlateTriangle {
 
   // kappa = curvature(L) * u at area coordinates L; u = 9 bending DOF.
   Eigen::Matrix<double, 3, 9> curvature(const Eigen::Vector3d& L) const;
+  // beta = [beta_x, beta_y] = rotation(L) * u: the element's quadratic rotation
+  // field (the geometric stiffness takes the slopes from it,
+  // shell_geometric_stiffness.h).
+  Eigen::Matrix<double, 2, 9> rotation(const Eigen::Vector3d& L) const;
   // gamma = [gamma_xz, gamma_yz] = shearStrain(L) * u (linear; zero for DKT).
   Eigen::Matrix<double, 2, 9> shearStrain(const Eigen::Vector3d& L) const;
   // dbeta = sideRotations() * u: the tangential bubble amplitudes.

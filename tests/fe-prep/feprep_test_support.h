@@ -6,6 +6,8 @@
 #include <mpi.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
@@ -14,6 +16,11 @@ namespace fc::feprep::test {
 
 // Runs fe-prep's pipeline on YAML text (errors name "<test>" as the file).
 BuildResult runYaml(const std::string& yaml, const std::string& name = "<test>");
+
+// Text of a body file under tests/data/fe-prep/ (a sweep's shared body), with
+// the first "key: value" of each given key set to the given value (a plain
+// scalar, inline or on its own line).
+std::string dataBodyYaml(const std::string& name, const std::vector<std::pair<std::string, std::string>>& set = {});
 
 // Path of the built fe-prep executable and a fresh scratch directory.
 std::string feprepExecutable();

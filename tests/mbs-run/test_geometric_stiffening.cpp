@@ -41,18 +41,11 @@ double crossingFrequency(const std::vector<double>& t, const std::vector<double>
   return 2 * M_PI * static_cast<double>(c.size() - 1) / (c.back() - c.front());
 }
 
+// The steel rod of tests/data/fe-prep/spinning_rod.yaml (also read by
+// tests/fe-prep/test_geometric_stiffness.cpp): L = 2 m, d = 0.02 m, clamped at its root.
 std::string rod(int elements, int modes) {
-  return R"(
-materials:
-  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
-body:
-  name: rod
-  beam: {length: 2.0, elements: )" + std::to_string(elements) + R"(, section: {shape: solid_circle, diameter: 0.02, material: steel}}
-  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}
-  reference: {clamp: [root]}
-  mass: lumped
-  geometric_stiffness: true
-  modes: )" + std::to_string(modes) + "\n";
+  return feprep::test::dataBodyYaml("spinning_rod.yaml",
+                                    {{"elements", std::to_string(elements)}, {"modes", std::to_string(modes)}});
 }
 
 // A driven hub (revolute about z at the rod's root, constant rate Omega) and the rod.
@@ -233,6 +226,54 @@ TEST(GeometricStiffening, SpinningCantileverFlapAndLagFrequencies) {
     EXPECT_NEAR(f.flap / flap, 1.0, 1e-3);
     EXPECT_NEAR(f.lag / lag, 1.0, 2e-3);
   }
+  std::filesystem::remove(file);
+}
+
+TEST(GeometricStiffening, SpinningPlateStripFlapsAsTheRotatingBeam) {
+  // The shells' membrane-stress geometric stiffness end to end: the narrow
+  // strip of tests/data/fe-prep/spinning_strip.yaml (DST, 2 m x 0.1 m x 0.01 m,
+  // nu = 0: a beam of EI = E b t^3 / 12, rho A = rho b t) spun about its normal
+  // (z) through the root at Omega = omega_0, started in its stiffened first
+  // flapwise mode; the tip's z frequency against the rotating-beam eigen-analysis.
+  const int kModes = 8;
+  const feprep::BuildResult b =
+      feprep::test::runYaml(feprep::test::dataBodyYaml("spinning_strip.yaml", {{"modes", std::to_string(kModes)}}));
+  const std::string file = writeTempBody(b.body, "geostiff_strip");
+  const double L = 2.0, w = 0.1, t = 0.01, EI = 70e9 * w * t * t * t / 12, rhoA = 2700 * w * t;
+  const double w0 = 1.8751040687 * 1.8751040687 * std::sqrt(EI / (rhoA * std::pow(L, 4)));
+  const double Om = w0;
+  // Linearised modal equations about steady spin, as spinRod's.
+  const fc::InertiaInvariants inv = fc::computeInertiaInvariants(b.body, kModes);
+  Eigen::MatrixXd K = b.body.eigenvalues.head(kModes).asDiagonal();
+  K += Om * Om * (b.body.geometric_stiffness[5] - 0.5 * L * b.body.geometric_stiffness[0]).topLeftCorner(kModes, kModes);
+  K -= Om * Om * inv.modal_products[4];
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K);
+  const Eigen::MatrixXd Psi = b.body.interface("tip").shapes.topRows(kModes).leftCols(3).transpose();
+  Eigen::VectorXd q0;
+  double linear = 0;
+  for (int j = 0; j < kModes && q0.size() == 0; ++j) {
+    const Eigen::Vector3d u = Psi * es.eigenvectors().col(j);
+    if (std::abs(u.z()) > 10 * u.head<2>().norm()) {
+      q0 = 1e-3 * es.eigenvectors().col(j) / u.z();
+      linear = std::sqrt(es.eigenvalues()(j));
+    }
+  }
+  ASSERT_EQ(q0.size(), kModes);
+  const Results r = simulate(sceneFromText(spinningScene(file, kModes, Om, q0, true, 6 * 2 * M_PI / linear)), {true});
+  ASSERT_EQ(r.status, "completed");
+  std::vector<double> z;
+  for (const auto& m : r.modal[1]) z.push_back((Psi * m).z());
+  const double flap = crossingFrequency(r.time, z);
+  const double ref = fc::test::rotatingBeamFrequencies(L, EI, rhoA, Om, false, 80, 1)(0);
+  std::printf("[   info   ] strip spun at omega_0 = %.4f rad/s: flap %.5f rad/s (linearised %.5f, rotating beam %.5f, "
+              "%+.2e; at rest %.5f)\n", Om, flap, linear, ref, flap / ref - 1, w0);
+  // The run against its own linearised equations: as the rod's, 1e-4.
+  EXPECT_NEAR(flap / linear, 1.0, 1e-4);
+  // The issue asks for 1-2 %. Expected: fe-prep's strip at h = 0.05 m is 1.7e-4
+  // low at omega_0 and 2.8e-4 at rest (DST with lumped masses, O(h^2);
+  // tests/fe-prep/test_geometric_stiffness.cpp), plus the crossing count
+  // (~1e-5): 2e-3, a thirtieth of the stiffening itself (+48 %).
+  EXPECT_NEAR(flap / ref, 1.0, 2e-3);
   std::filesystem::remove(file);
 }
 
