@@ -16,13 +16,17 @@
 // the impact dissipates (zero for e = 1).
 //
 // Rest instead of a Zeno sequence: after an impact the joint would rise
-// from the stop at e |rate-| against an acceleration a that pushes it back;
-// if that flight's apex (e rate)^2 / (2 a) is below the angle tolerance the
-// integrator works to, the next bounces cannot be resolved, so the joint
-// rests on the stop (its angle held by one row, captureLock) and leaves it
-// when the row's torque turns from pushing into pulling (located on the
-// dense output like an impact, with a hysteresis of a relative 1e-8 of the
-// system's largest multiplier so that rounding cannot make it chatter).
+// from the stop at v = e |rate-| against an acceleration a that pushes it
+// back; with a constant a the bounces that follow form a geometric series
+// that ends (accumulates) after t_Z = 2 v / ((1 - e) a), rising at most
+// v^2 / (2 a). The joint rests (its angle held by one row, captureLock) when
+// that remainder cannot be resolved: all of it fits inside the integrator's
+// current step (t_Z <= h: the time-stepping view of Moreau and Jean, where a
+// rebound that the contact's acceleration reverses within a step is a closed
+// contact), or its apex is below the angle tolerance. It leaves when the
+// row's torque turns from pushing into pulling (located on the dense output
+// like an impact, with a hysteresis of a relative 1e-8 of the holding torque
+// so that rounding cannot make it chatter).
 #include <Eigen/Dense>
 
 #include <array>
@@ -49,10 +53,17 @@ struct ImpactSolution {
 ImpactSolution constrainedImpact(const Eigen::MatrixXd& M, const Eigen::MatrixXd& Phi, const Eigen::VectorXd& phit,
                                  const Eigen::RowVectorXd& g, const Eigen::VectorXd& v_minus, double target);
 
+// Duration of the rest of a Zeno sequence: the bounces after a rebound at
+// `rebound_rate` against a constant `accel_into_stop` (> 0), restitution e < 1,
+// sum to 2 rebound / ((1 - e) accel) (a geometric series of flight times).
+double zenoRemainder(double restitution, double rebound_rate, double accel_into_stop);
+
 // Whether a joint leaving its stop at `rebound_rate` against `accel_into_stop`
 // (both >= 0 toward the stop's side convention: rate away, acceleration back)
-// rises less than `angle_tol` before falling back: then it rests.
-bool shouldRest(double restitution, double rebound_rate, double accel_into_stop, double angle_tol);
+// rests: its remaining bounces all fit inside one integrator step `step`
+// [s] (t_Z <= step), or it rises less than `angle_tol` before falling back.
+bool shouldRest(double restitution, double rebound_rate, double accel_into_stop, double angle_tol,
+                double step = 0.0);
 
 // One stop event inside an accepted step.
 struct StopEvent {
@@ -76,8 +87,10 @@ class StopMonitor {
   std::optional<StopEvent> locate(System& sys, const Dense& dense, double t0, const Eigen::VectorXd& y0, double t1,
                                   const Eigen::VectorXd& y1);
   // Applies an event at its time: impulse and energy loss (into y's
-  // dissipated-energy quadrature), rest or release. Returns the log line.
-  std::string apply(System& sys, const StopEvent& ev, double t, Eigen::VectorXd& y);
+  // dissipated-energy quadrature), rest or release. `step` is the accepted
+  // integrator step the event was located in (the time resolution of the
+  // rest rule; 0 at the start). Returns the log line.
+  std::string apply(System& sys, const StopEvent& ev, double t, Eigen::VectorXd& y, double step = 0.0);
   // Per joint (empty for joints without limits), per impact: time, angle
   // rate before and after [rad/s], impulse [N m s], energy lost [J]. The
   // resting state and torque are in each output row (sampling.h).
@@ -89,8 +102,10 @@ class StopMonitor {
   // Torque of a resting stop pushing the joint away from it (>= 0 while the
   // contact holds), after evaluating the derivative at (t, y).
   double push(System& sys, int j, double t, const Eigen::VectorXd& y) const;
-  // Rest if the joint is pushed into the stop, else leave it free.
-  bool restIfPushed(System& sys, int j, int side, double t, Eigen::VectorXd& y, double& lost);
+  // Rest if the joint is pushed into the stop, else leave it free; on rest
+  // `accumulation` is the time the Zeno sequence would have ended (t + t_Z).
+  bool restIfPushed(System& sys, int j, int side, double t, Eigen::VectorXd& y, double step, double& lost,
+                    double& accumulation);
 
   const Model& model_;
   double angle_tol_;

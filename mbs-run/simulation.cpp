@@ -284,7 +284,8 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
         if (same_time_stops > 20)
           throw std::runtime_error("joint " + model.joints[stop->joint].name +
                                    ": stop events repeat without time advancing (Zeno sequence)");
-        R.event_log.push_back(stops.apply(sys, *stop, t, y));
+        // The step the event was found in is the rest rule's time resolution.
+        R.event_log.push_back(stops.apply(sys, *stop, t, y, integ.t() - integ.tPrevious()));
         sys.project(t, y);
         methods.restartAfterEvent(t, y, R.integrator_log);
       } else if (methods.switchIfStiff(t, y, R.integrator_log)) {

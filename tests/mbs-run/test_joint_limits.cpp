@@ -5,8 +5,11 @@
 // - a pendulum falling onto a stop hits it at the time and rate of the
 //   free pendulum (quadrature of the energy integral), rebounds with e w,
 //   each flight returns at the rate it left (so the impact rates follow e^k
-//   and the rise heights e^2k), rests after the number of bounces the rest
-//   rule predicts, and then the stop holds the static torque m g L/2 cos;
+//   and the rise heights e^2k), rests once the remaining bounces fit in one
+//   integrator step, and then the stop holds the static torque m g L/2 cos;
+// - a rotor driven into a stop by a constant torque (the rotational bouncing
+//   ball) bounces at the closed-form times and rates and rests at its Zeno
+//   time t1 + 2 e v1 / ((1 - e) a) with the static torque;
 // - a stop_only revolute beside two spherical joints on its axis (the
 //   flexible SAR's hinge) gives the same impact;
 // - energy over many elastic (e = 1) impacts between two stops is conserved;
@@ -84,6 +87,11 @@ TEST(JointLimitsKernel, RestRule) {
   EXPECT_FALSE(shouldRest(0.5, 1e-6, -1.0, 1e-9));  // pulled away: it leaves
   EXPECT_TRUE(shouldRest(0.5, 1e-5, 10.0, 1e-9));   // apex 5e-12 rad < 1e-9
   EXPECT_FALSE(shouldRest(0.5, 1e-3, 10.0, 1e-9));  // apex 5e-8 rad > 1e-9
+  // The remaining bounces last 2 e|v-| / ((1 - e) a) = 2 * 1e-3 / (0.5 * 10) = 4e-4 s:
+  EXPECT_DOUBLE_EQ(zenoRemainder(0.5, 1e-3, 10.0), 4e-4);
+  EXPECT_TRUE(shouldRest(0.5, 1e-3, 10.0, 1e-9, 5e-4));   // all within one 0.5 ms step
+  EXPECT_FALSE(shouldRest(0.5, 1e-3, 10.0, 1e-9, 3e-4));  // not within a 0.3 ms step
+  EXPECT_FALSE(shouldRest(1.0, 1e-3, 10.0, 1e-9, 1.0));   // elastic: no accumulation
 }
 
 // The rod pendulum of test_events.cpp: m = 1, L = 1, d = 0.01, pivot at one
@@ -161,12 +169,16 @@ TEST(JointLimits, PendulumBouncesWithRestitutionThenRests) {
     if (i > 0) EXPECT_NEAR(rise / prev_rise, e * e, 0.02) << i;
     prev_rise = rise;
   }
-  // Rest: once the rebound apex (e w)^2 / (2 a) falls below atol = 1e-3
-  // rtol, with a = k cos(bs) the acceleration into the stop.
+  // Rest: once the remaining bounces, 2 e w / ((1 - e) a) with a = k cos(bs)
+  // the acceleration into the stop (constant in the limit of small flights),
+  // fit in one integrator step (at most max_step = 10 output steps = 0.1 s),
+  // or their apex (e w)^2 / (2 a) is below atol = 1e-3 rtol: never later than
+  // the apex rule alone would rest (21 impacts), and with a remainder below 0.1 s.
   const double atol = 1e-3 * rtol, a = k * std::cos(bs);
-  int expected = 0;
-  while (std::pow(e * std::pow(e, expected) * w0, 2) >= 2 * a * atol) ++expected;
-  EXPECT_NEAR(double(imp.size()), double(expected + 1), 1.0);
+  int apex_rule = 0;
+  while (std::pow(e * std::pow(e, apex_rule) * w0, 2) >= 2 * a * atol) ++apex_rule;
+  EXPECT_LE(double(imp.size()), double(apex_rule + 2));
+  EXPECT_LE(zenoRemainder(e, e * std::abs(imp.back()[1]), a), 0.1);
   // Resting: the stop holds the static gravity torque, pushing the angle
   // down: -m g (L/2) cos(bs).
   EXPECT_EQ(r.limit_state[0].back(), 1);
@@ -280,6 +292,111 @@ simulation: {t_end: 1.5, output_step: 0.01, rtol: 1.0e-10}
       EXPECT_EQ(l.rfind("t=1:", 0), 0u) << l;
     }
   EXPECT_TRUE(released);
+}
+
+// The rotational bouncing ball: a rotor (no gravity, I = 0.3 kg m^2) starts
+// at rest 0.5 rad above its min stop under a constant torque of -2 N m, so
+// its acceleration a = 2/I into the stop never changes and everything is in
+// closed form: first impact at t1 = sqrt(2 0.5/a) with v1 = a t1, impact k
+// at rate e^(k-1) v1, flight k lasting 2 e^k v1 / a, and the flights summing
+// to the Zeno time t_inf = t1 + 2 e v1 / ((1 - e) a), after which the rotor
+// rests with the stop holding the full 2 N m.
+struct ZenoRun {
+  Results r;
+  double a, t1, v1, t_inf;
+};
+ZenoRun bouncingRotor(double e, double rtol) {
+  const double I = 0.3, torque = 2.0, theta0 = 0.5;
+  char sim[160];
+  std::snprintf(sim, sizeof sim, "simulation: {t_end: %.17g, output_step: 0.001, rtol: %g}\n",
+                // t_inf plus 0.3 s of rest
+                std::sqrt(2 * theta0 * I / torque) * (1 + 2 * e / (1 - e)) + 0.3, rtol);
+  char lim[64];
+  std::snprintf(lim, sizeof lim, "{min: 0.0, restitution: %g}}\n", e);
+  ZenoRun z{simulate(sceneFromText(testScene("ground_and_rotor.yaml") + R"(joints:
+  - {name: R, type: revolute, bodies: [ground, rotor], points: [[0,0,0],[0,0,0]], axes: [[0,1,0],[0,1,0]],
+     initial_angle: 0.5, limits: )" + lim + R"(forces:
+  - {name: push, type: torque, body: rotor, torque: [0, -2, 0]}
+)" + sim),
+                     {true}),
+            torque / I, 0, 0, 0};
+  z.t1 = std::sqrt(2 * theta0 / z.a);
+  z.v1 = z.a * z.t1;
+  z.t_inf = z.t1 + 2 * e * z.v1 / ((1 - e) * z.a);
+  return z;
+}
+
+// The exact angle of the bouncing rotor at time t (parabolic flights).
+double bouncingAngle(double t, double e, double a, double t1, double v1) {
+  if (t <= t1) return 0.5 - 0.5 * a * t * t;
+  double tk = t1, v = v1;
+  for (int k = 0; k < 200; ++k) {
+    const double w = e * v, flight = 2 * w / a;
+    if (t <= tk + flight) return w * (t - tk) - 0.5 * a * (t - tk) * (t - tk);
+    tk += flight;
+    v = w;
+  }
+  return 0.0;  // past the accumulation point: at rest on the stop
+}
+
+TEST(JointLimits, ZenoSequenceRestsAtItsAccumulationTimeWithTheStaticTorque) {
+  for (double e : {0.5, 0.8}) {
+    for (double rtol : {1e-6, 1e-9}) {
+      const ZenoRun z = bouncingRotor(e, rtol);
+      const Results& r = z.r;
+      ASSERT_EQ(r.status, "completed") << e << " " << rtol;
+      const auto& imp = r.limit_impacts[0];
+      ASSERT_GE(imp.size(), 1u);
+      // The impacts follow the closed form: the motion is quadratic, so the
+      // 5th-order integrator is exact up to rounding and the location is to
+      // machine precision (1e-9 s and rad/s leave room for the bisection).
+      double tk = z.t1, v = z.v1;
+      for (std::size_t k = 0; k < imp.size(); ++k) {
+        EXPECT_NEAR(imp[k][0], tk, 1e-9) << e << " " << rtol << " impact " << k;
+        EXPECT_NEAR(imp[k][1], -v, 1e-9) << k;
+        tk += 2 * e * v / z.a;
+        v *= e;
+      }
+      // Rest: the log names the accumulation time the remaining bounces would
+      // have reached, t_rest + 2 e v / ((1 - e) a): the Zeno time of the
+      // closed form, to rounding.
+      double t_rest = -1, t_acc = -1;
+      for (const std::string& l : r.event_log) {
+        const auto p = l.find("would have ended at t=");
+        if (p == std::string::npos) continue;
+        t_rest = std::stod(l.substr(2));
+        t_acc = std::stod(l.substr(p + 22));
+      }
+      ASSERT_GT(t_rest, 0) << "no rest with a Zeno remainder in the log";
+      EXPECT_NEAR(t_acc, z.t_inf, 1e-9) << e << " " << rtol;
+      EXPECT_NEAR(t_rest, imp.back()[0], 1e-8);  // the log prints 10 digits
+      // The rule rests once the remainder fits in one integrator step (at most
+      // max_step = 10 output steps = 0.01 s here) - a bounded number of
+      // impacts: fewer than the n with 2 e^n v1 / ((1 - e) a) < 1e-4 s.
+      EXPECT_LE(z.t_inf - t_rest, 0.01);
+      const int bound = int(std::ceil(std::log(1e-4 * (1 - e) * z.a / (2 * z.v1)) / std::log(e)));
+      EXPECT_LE(int(imp.size()), bound);
+      // The motion is the exact one within the remainder's apex (the bounces
+      // the rest leaves out rise at most (e v_n)^2 / (2 a)), and afterwards
+      // the stop holds the torque's statics exactly.
+      const double w_last = e * std::abs(imp.back()[1]);
+      const double apex = w_last * w_last / (2 * z.a);
+      double worst = 0;
+      for (std::size_t n = 0; n < r.time.size(); ++n) {
+        const double t = r.time[n];
+        worst = std::max(worst, std::abs(r.joint_angle[0][n] - bouncingAngle(t, e, z.a, z.t1, z.v1)));
+        if (t > z.t_inf) {
+          EXPECT_EQ(r.limit_state[0][n], -1) << t;
+          EXPECT_NEAR(r.limit_torque[0][n], 2.0, 1e-9) << t;
+          EXPECT_NEAR(r.joint_angle[0][n], 0.0, 1e-12) << t;
+        }
+      }
+      EXPECT_LE(worst, apex + 1e-9) << e << " " << rtol;
+      std::printf("[   info   ] e = %.1f, rtol %.0e: %zu impacts, rests at %.9f s, Zeno time %.9f s (closed form "
+                  "%.9f s), angle within %.2e rad of the exact bounces (remainder apex %.2e)\n",
+                  e, rtol, imp.size(), t_rest, t_acc, z.t_inf, worst, apex);
+    }
+  }
 }
 
 TEST(JointLimits, LatchEventLocksWithAPlasticLoss) {
