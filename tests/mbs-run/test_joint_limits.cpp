@@ -179,6 +179,9 @@ TEST(JointLimits, PendulumBouncesWithRestitutionThenRests) {
   while (std::pow(e * std::pow(e, apex_rule) * w0, 2) >= 2 * a * atol) ++apex_rule;
   EXPECT_LE(double(imp.size()), double(apex_rule + 2));
   EXPECT_LE(zenoRemainder(e, e * std::abs(imp.back()[1]), a), 0.1);
+  std::printf("[   info   ] rests at impact %zu (the apex rule alone: %d): remaining bounces %.2e s, apex %.2e rad\n",
+              imp.size(), apex_rule + 1, zenoRemainder(e, e * std::abs(imp.back()[1]), a),
+              std::pow(e * imp.back()[1], 2) / (2 * a));
   // Resting: the stop holds the static gravity torque, pushing the angle
   // down: -m g (L/2) cos(bs).
   EXPECT_EQ(r.limit_state[0].back(), 1);
