@@ -191,8 +191,9 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   R.warnings = samplingWarnings(model);
   SummarySink sink(model, output, R);
   const Tolerances tol = tolerances(st, sys.size());
-  // Stops on revolute joints (joint_limits.h): the angle tolerance that
-  // decides when a rebound is too small to resolve is atol [rad].
+  // Stops on revolute joints (joint_limits.h): a rebound rests when its
+  // remaining bounces fit in the step it was found in, or rise less than
+  // atol [rad].
   StopMonitor stops(model, tol.atol);
   FiniteGuard guard(sys);
   IntegratorSwitching methods(st, guard.rhs(), [&sys](double t, const VectorXd& yy) { return sys.modalSplit(t, yy); },
