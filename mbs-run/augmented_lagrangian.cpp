@@ -130,8 +130,10 @@ bool AlSolver::SparsityPattern::update(const SparseMatrixd& A) {
   return true;
 }
 
-bool AlSolver::wantsSchur(const SparseMatrixd& Phi_v) const {
-  return method_ == AlMethod::BlockSchur || (method_ == AlMethod::Automatic && Phi_v.rows() <= kMaxSchurRows);
+bool AlSolver::wantsSchur(const SparseMatrixd&) const { return method_ != AlMethod::SparseLdlt; }
+
+bool AlSolver::wantsSparseS(int rows) const {
+  return method_ == AlMethod::SparseSchur || (method_ == AlMethod::Automatic && rows > kMaxDenseSchurRows);
 }
 
 void AlSolver::factorize(const BlockDiagonal& M, const SparseMatrixd& Phi_v, double alpha) {
@@ -139,10 +141,7 @@ void AlSolver::factorize(const BlockDiagonal& M, const SparseMatrixd& Phi_v, dou
   M_ = M;
   Phi_ = Phi_v;
   M_sparse_.resize(0, 0);
-  if (wantsSchur(Phi_v) && factorizeSchur()) {
-    used_ = AlMethod::BlockSchur;
-    return;
-  }
+  if (wantsSchur(Phi_v) && factorizeSchur()) return;
   M_sparse_ = M_.toSparse();
   factorizeSparse();
 }
@@ -153,10 +152,7 @@ void AlSolver::factorize(const SparseMatrixd& M, const SparseMatrixd& Phi_v, dou
   if (wantsSchur(Phi_v)) {
     M_ = BlockDiagonal::fromSparse(M);
     M_sparse_.resize(0, 0);
-    if (factorizeSchur()) {
-      used_ = AlMethod::BlockSchur;
-      return;
-    }
+    if (factorizeSchur()) return;
   }
   M_ = BlockDiagonal{};
   M_sparse_ = M;
@@ -204,7 +200,14 @@ bool AlSolver::factorizeSchur() {
         for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.slot.push_back(index[it.row()]);
     }
   }
-  S_.setZero(m, m);
+  s_sparse_ = m > 0 && wantsSparseS(m);
+  if (s_sparse_ && (new_pattern || !s_sparse_analysed_ || s_block_slot_.size() != nb)) buildSparsePattern();
+  if (s_sparse_) {
+    std::fill(S_sparse_.valuePtr(), S_sparse_.valuePtr() + S_sparse_.nonZeros(), 0.0);
+    for (int d : s_diag_slot_) S_sparse_.valuePtr()[d] = 1.0 / alpha_;
+  } else {
+    S_.setZero(m, m);
+  }
   for (std::size_t b = 0; b < nb; ++b) {
     BlockData& B = blocks_[b];
     const int c0 = M_.offset[b];
@@ -220,9 +223,25 @@ bool AlSolver::factorizeSchur() {
       for (SparseMatrixd::InnerIterator it(Phi_, c); it; ++it) B.V(c - c0, B.slot[k++]) = it.value();
     B.factor.solveF(B.V);
     B.G.noalias() = B.V.transpose() * B.V;
+    if (s_sparse_) {
+      double* values = S_sparse_.valuePtr();
+      const int* slot = s_block_slot_[b].data();
+      for (int j = 0; j < nr; ++j)
+        for (int i = j; i < nr; ++i) values[*slot++] += B.G(i, j);
+      continue;
+    }
     for (int j = 0; j < nr; ++j)
       for (int i = 0; i < nr; ++i) S_(B.rows[i], B.rows[j]) += B.G(i, j);
   }
+  if (s_sparse_) {
+    // LDL^T without pivoting: S is positive definite, and a rounding-negative
+    // pivot of redundant rows (see below) only gives a negative D entry.
+    s_sparse_ldlt_.factorize(S_sparse_);
+    ok_ = s_sparse_ldlt_.info() == Eigen::Success;
+    used_ = AlMethod::SparseSchur;
+    return ok_;
+  }
+  used_ = AlMethod::BlockSchur;
   S_.diagonal().array() += 1.0 / alpha_;
   // I/a + Phi M^-1 Phi^T is positive definite, but with redundant rows its
   // condition number is of order a / (smallest inertia): Cholesky can meet a
@@ -232,6 +251,33 @@ bool AlSolver::factorizeSchur() {
   if (s_use_ldlt_) s_ldlt_.compute(S_);
   ok_ = !s_use_ldlt_ || s_ldlt_.info() == Eigen::Success;
   return ok_;
+}
+
+// The lower triangle of S's pattern: the diagonal, and for every block the
+// pairs of rows it touches (B.rows is sorted, so i >= j in B.rows is the
+// lower triangle). Each value has its slot; the LDL^T's symbolic analysis
+// (AMD ordering, elimination tree) is redone for the new pattern.
+void AlSolver::buildSparsePattern() {
+  const int m = int(Phi_.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i) t.emplace_back(i, i, 1.0);
+  for (const BlockData& B : blocks_)
+    for (std::size_t j = 0; j < B.rows.size(); ++j)
+      for (std::size_t i = j; i < B.rows.size(); ++i) t.emplace_back(B.rows[i], B.rows[j], 1.0);
+  S_sparse_.resize(m, m);
+  S_sparse_.setFromTriplets(t.begin(), t.end());
+  S_sparse_.makeCompressed();
+  auto slot = [&](int r, int c) { return int(&S_sparse_.coeffRef(r, c) - S_sparse_.valuePtr()); };
+  s_diag_slot_.resize(m);
+  for (int i = 0; i < m; ++i) s_diag_slot_[i] = slot(i, i);
+  s_block_slot_.assign(blocks_.size(), {});
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockData& B = blocks_[b];
+    for (std::size_t j = 0; j < B.rows.size(); ++j)
+      for (std::size_t i = j; i < B.rows.size(); ++i) s_block_slot_[b].push_back(slot(B.rows[i], B.rows[j]));
+  }
+  s_sparse_ldlt_.analyzePattern(S_sparse_);
+  s_sparse_analysed_ = true;
 }
 
 void AlSolver::factorizeSparse() {
@@ -252,6 +298,7 @@ VectorXd AlSolver::multiplyM(const VectorXd& x) const {
 }
 
 VectorXd AlSolver::solveS(const VectorXd& r) const {
+  if (s_sparse_) return s_sparse_ldlt_.solve(r);
   if (s_use_ldlt_) return s_ldlt_.solve(r);
   VectorXd x = s_L_.triangularView<Eigen::Lower>().solve(r);
   s_L_.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
@@ -304,7 +351,7 @@ VectorXd AlSolver::solve(const VectorXd& r) const {
 // would leave errors of eps cond(K) |x| in every acceleration.
 VectorXd AlSolver::iterate(const VectorXd& b, const VectorXd& g, double tol, int max_it, bool stop_on_stall,
                            VectorXd* mu_out, int* its, double* res) const {
-  if (used_ == AlMethod::BlockSchur) return iterateSchur(b, g, tol, max_it, stop_on_stall, mu_out, its, res);
+  if (used_ != AlMethod::SparseLdlt) return iterateSchur(b, g, tol, max_it, stop_on_stall, mu_out, its, res);
   const double a = alpha_;
   const SparseMatrixd& Phi = Phi_;
   VectorXd mu = VectorXd::Zero(Phi.rows());

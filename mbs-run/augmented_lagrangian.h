@@ -11,19 +11,25 @@
 // After a step the state is projected mass-orthogonally onto the constraint
 // manifold (positions) and its tangent (velocities) with the same matrix.
 //
-// Two ways to apply K^-1, K = M + a Phi_v^T Phi_v, same iteration, same
+// Three ways to apply K^-1, K = M + a Phi_v^T Phi_v, same iteration, same
 // answers to rounding:
-// - block Schur (the default up to kMaxSchurRows constraint rows): M is
-//   block diagonal, one dense block per body, so
+// - block Schur: M is block diagonal, one dense block per body, so
 //     K^-1 = M^-1 - M^-1 Phi^T (I/a + Phi M^-1 Phi^T)^-1 Phi M^-1
 //   (Sherman-Morrison-Woodbury) needs only the bodies' small blocks and one
-//   dense m x m Cholesky factorisation of the joint-space matrix. On the SAR
-//   antenna (112 coordinates, 64 rows) it is several times cheaper than a
-//   general sparse LDL^T, whose scalar elimination and index handling cost
-//   more than the arithmetic at this size.
-// - sparse LDL^T of K (Eigen's SimplicialLDLT, AMD ordering): for many
-//   constraint rows, where the dense m x m factorisation would dominate, and
-//   whenever a body's own mass block is singular (K may still be definite).
+//   factorisation of the joint-space matrix S = I/a + Phi M^-1 Phi^T. On the
+//   SAR antenna (112 coordinates, 64 rows) it is several times cheaper than a
+//   general sparse LDL^T of K, whose scalar elimination and index handling
+//   cost more than the arithmetic at this size. S is factorised
+//   - dense (BlockSchur; the default up to kMaxDenseSchurRows rows), or
+//   - sparse (SparseSchur, the default above): S couples two rows only
+//     where they touch a common body, so for a chain or a tree it is
+//     block-sparse (block tridiagonal for a chain) and its LDL^T (Eigen's
+//     SimplicialLDLT, AMD ordering: leaves first, no fill for a tree) costs
+//     O(m). With the bodies' blocks that makes an evaluation O(N) in the
+//     number of bodies (docs/benchmarks.md, rigid chains).
+// - sparse LDL^T of K (Eigen's SimplicialLDLT, AMD ordering): whenever a
+//   body's own mass block is singular (K may still be definite); forming
+//   Phi^T Phi and K each time costs several times the Schur forms.
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
@@ -84,18 +90,17 @@ struct AlResult {
   double residual = 0.0;  // ||Phi_v vdot + s||_inf at the end
 };
 
-enum class AlMethod { Automatic, BlockSchur, SparseLdlt };
+enum class AlMethod { Automatic, BlockSchur, SparseSchur, SparseLdlt };
 
 // Holds the factorised K for one configuration, with copies of M and Phi_v,
 // and runs the multiplier iterations against it.
 class AlSolver {
  public:
-  // Automatic: block Schur while the rows are at most this many. Measured
-  // (bench_mbs ChainRightHandSide, rigid rods on revolute joints, the
-  // sparsest case for a dense S): equal cost at 120 rows, sparse 2.4x
-  // cheaper at 240 and 36x at 960; the flexible SAR (64 rows, 20-coordinate
-  // blocks) is 2x cheaper with Schur.
-  static constexpr int kMaxSchurRows = 120;
+  // Automatic: block Schur with a dense S while the rows are at most this
+  // many, with a sparse S above (and the sparse LDL^T of K when a body's
+  // block is singular). Measured: see kMaxDenseSchurRows's note in
+  // docs/mbs-run.md ("Cost").
+  static constexpr int kMaxDenseSchurRows = 120;
 
   void setMethod(AlMethod method) { method_ = method; }
   // Factorises M + alpha Phi_v^T Phi_v.
@@ -155,6 +160,7 @@ class AlSolver {
     void clear() { outer.clear(); }
   };
   bool wantsSchur(const SparseMatrixd& Phi_v) const;
+  bool wantsSparseS(int rows) const;
 
   std::vector<BlockData> blocks_;
   SparsityPattern phi_pattern_;
@@ -162,6 +168,16 @@ class AlSolver {
   Eigen::MatrixXd s_L_;  // Cholesky factor of S (lower triangle)
   Eigen::LDLT<Eigen::MatrixXd> s_ldlt_;
   bool s_use_ldlt_ = false;
+  // Sparse S (lower triangle): the value slot of each diagonal entry and,
+  // per block, of each (i >= j) entry of its G in S's value array, kept
+  // while Phi's pattern is unchanged; the symbolic analysis likewise.
+  bool s_sparse_ = false;
+  SparseMatrixd S_sparse_;
+  std::vector<int> s_diag_slot_;
+  std::vector<std::vector<int>> s_block_slot_;
+  Eigen::SimplicialLDLT<SparseMatrixd> s_sparse_ldlt_;
+  bool s_sparse_analysed_ = false;
+  void buildSparsePattern();
   Eigen::VectorXd solveS(const Eigen::VectorXd& r) const;
   Eigen::VectorXd iterateSchur(const Eigen::VectorXd& b, const Eigen::VectorXd& g, double tol, int max_it,
                                bool stop_on_stall, Eigen::VectorXd* mu_out, int* its, double* res) const;

@@ -177,7 +177,8 @@ struct Settings {
   // step control there (docs/mbs-run.md).
   int multiplier_iterations = 3;
   // How (M + a Phi^T Phi)^-1 is applied (augmented_lagrangian.h): block Schur
-  // complement up to AlSolver::kMaxSchurRows constraint rows, else sparse LDL^T.
+  // complement with a dense joint-space matrix up to
+  // AlSolver::kMaxDenseSchurRows constraint rows, with a sparse one above.
   AlMethod linear_solver = AlMethod::Automatic;
 };
 

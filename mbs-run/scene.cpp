@@ -445,8 +445,9 @@ void parseSimulation(const InputNode& s, Settings& st) {
     const std::string v = ls->asString();
     if (v == "auto") st.linear_solver = AlMethod::Automatic;
     else if (v == "schur") st.linear_solver = AlMethod::BlockSchur;
+    else if (v == "sparse_schur") st.linear_solver = AlMethod::SparseSchur;
     else if (v == "sparse") st.linear_solver = AlMethod::SparseLdlt;
-    else ls->fail("expected auto, schur or sparse, got '" + v + "'");
+    else ls->fail("expected auto, schur, sparse_schur or sparse, got '" + v + "'");
   }
   if (s.has("preset")) applyPreset(s["preset"], st);
   st.t_end = s["t_end"].asPositive();

@@ -5,9 +5,8 @@
 //     second of `imex` (and `dopri5` where it finishes in reasonable time);
 //  B. the stiff beam pendulum (4 modes, first mode 145 Hz) at rtol 1e-6:
 //     real-time factor of `dopri5` and `imex`;
-//  C. rigid chains of N = 10..1000 rods on revolute joints: CPU per
-//     right-hand side and per simulated second (dopri5, rtol 1e-6).
-// Usage: bench_integrators [A|B|C]... [modes] (all when none given; modes:
+// (Rigid chains, issue 17's third part: bench_chains.cpp.)
+// Usage: bench_integrators [A|B]... [modes] (all when none given; modes:
 // only that row of A, for profiling).
 #include <cmath>
 #include <cstdio>
@@ -17,7 +16,6 @@
 #include <string>
 
 #include "../../tests/mbs-run/beam_body.h"
-#include "chain_scene.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
 
@@ -102,36 +100,10 @@ void stiff() {
   std::filesystem::remove(file);
 }
 
-void chains() {
-  std::printf("\n### C. Rigid chains of N rods on revolute joints (dopri5, rtol 1e-6)\n\n");
-  std::printf("| N | rows | linear solver | us per rhs | us per rhs / N | sim time [s] | CPU s / sim s | steps | status |\n|---|---|---|---|---|---|---|---|---|\n");
-  for (int n : {10, 50, 200, 1000}) {
-    const double t_end = n <= 50 ? 0.2 : (n <= 200 ? 0.05 : 0.01);
-    char sim[160];
-    std::snprintf(sim, sizeof sim, "{t_end: %g, output_step: %g, rtol: 1e-6, integrator: dopri5}", t_end, t_end / 10);
-    const std::string scene = fc::mbs::bench::rodChainScene(n, sim);
-    const fc::mbs::Model m = fc::mbs::test::sceneFromText(scene);
-    fc::mbs::System sys(m);
-    Eigen::VectorXd yv = sys.initialState(), yd;
-    sys.initializeJoints(yv);
-    sys.project(0.0, yv);
-    const int reps = std::max(5, 20000 / n);
-    const std::clock_t c0 = std::clock();
-    for (int k = 0; k < reps; ++k) sys.derivative(0.0, yv, yd);
-    const double us = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / reps;
-    const Results r = fc::mbs::simulate(m, {true});
-    std::printf("| %d | %d | %s | %.1f | %.2f | %g | %.3g | %ld | %s |\n", n, 5 * n,
-                5 * n <= fc::mbs::AlSolver::kMaxSchurRows ? "block Schur" : "sparse LDL^T", us, us / n, t_end,
-                r.cpu_seconds / r.t_reached, r.steps, r.status.substr(0, 12).c_str());
-    std::fflush(stdout);
-  }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string which = argc > 1 ? argv[1] : "ABC";
+  const std::string which = argc > 1 ? argv[1] : "AB";
   if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0);
   if (which.find('B') != std::string::npos) stiff();
-  if (which.find('C') != std::string::npos) chains();
 }

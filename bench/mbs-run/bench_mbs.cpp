@@ -65,12 +65,14 @@ BENCHMARK(SarRightHandSide)->Unit(benchmark::kMicrosecond);
 
 // A planar chain of range(0) rods hanging from revolute joints (5 constraint
 // rows each, 6 coordinates per rod), one right-hand side with the linear
-// solver range(1) (0 block Schur, 1 sparse LDL^T): where the dense m x m
-// joint-space factorisation stops paying (AlSolver::kMaxSchurRows).
+// solver range(1) (0 block Schur with a dense S, 1 sparse LDL^T of K, 2 block
+// Schur with a sparse S): where the dense m x m joint-space factorisation
+// stops paying (AlSolver::kMaxDenseSchurRows).
 void ChainRightHandSide(benchmark::State& state) {
   const int n = int(state.range(0));
   const std::string scene = fc::mbs::bench::rodChainScene(
-      n, std::string("{t_end: 1, linear_solver: ") + (state.range(1) ? "sparse" : "schur") + "}");
+      n, std::string("{t_end: 1, linear_solver: ") +
+             (state.range(1) == 0 ? "schur" : state.range(1) == 1 ? "sparse" : "sparse_schur") + "}");
   const fc::mbs::Model m = fc::mbs::parseScene(fc::InputNode::loadString(scene, "chain.yaml"));
   fc::mbs::System sys(m);
   Eigen::VectorXd yv = sys.initialState(), yd;
@@ -83,7 +85,7 @@ void ChainRightHandSide(benchmark::State& state) {
   state.counters["rows"] = 5.0 * n;
   state.counters["coordinates"] = 6.0 * n;
 }
-BENCHMARK(ChainRightHandSide)->ArgsProduct({{10, 24, 48, 96, 192}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(ChainRightHandSide)->ArgsProduct({{10, 24, 48, 96, 192}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 // Phase 1 (or the whole run, 20 s, when range(2) is 1) of one SAR model at
 // rtol 10^-range(0); range(1) selects the integrator (0 dopri5 throughout,

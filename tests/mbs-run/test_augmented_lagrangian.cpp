@@ -142,9 +142,11 @@ TEST_P(AugmentedLagrangian, BlockDiagonalMassAsBodiesGiveIt) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, AugmentedLagrangian,
-                         ::testing::Values(AlMethod::BlockSchur, AlMethod::SparseLdlt),
+                         ::testing::Values(AlMethod::BlockSchur, AlMethod::SparseSchur, AlMethod::SparseLdlt),
                          [](const ::testing::TestParamInfo<AlMethod>& i) {
-                           return i.param == AlMethod::BlockSchur ? "BlockSchur" : "SparseLdlt";
+                           return i.param == AlMethod::BlockSchur    ? "BlockSchur"
+                                  : i.param == AlMethod::SparseSchur ? "SparseSchur"
+                                                                     : "SparseLdlt";
                          });
 
 // A body whose own mass block is singular (a point mass carried by
@@ -173,10 +175,11 @@ TEST(AugmentedLagrangianFallback, SingularBodyBlockFallsBackToSparse) {
   EXPECT_NEAR(r.vdot[3], -3.0, 1e-6);
 }
 
-// The automatic choice: block Schur up to kMaxSchurRows rows, sparse above
-// (a dense m x m factorisation costs m^3/3 whatever the sparsity).
+// The automatic choice: block Schur with a dense S up to kMaxDenseSchurRows
+// rows, with a sparse S above (a dense m x m factorisation costs m^3/3
+// whatever the sparsity).
 TEST(AugmentedLagrangianFallback, ManyRowsUseTheSparseFactorisation) {
-  for (int m : {AlSolver::kMaxSchurRows, AlSolver::kMaxSchurRows + 1}) {
+  for (int m : {AlSolver::kMaxDenseSchurRows, AlSolver::kMaxDenseSchurRows + 1}) {
     const int n = 2 * m;
     const SparseMatrixd M = Eigen::MatrixXd::Identity(n, n).sparseView();
     Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m, n);
@@ -187,7 +190,7 @@ TEST(AugmentedLagrangianFallback, ManyRowsUseTheSparseFactorisation) {
     AlSolver solver;
     solver.factorize(M, SparseMatrixd(P.sparseView()), 1e6);
     ASSERT_TRUE(solver.ok());
-    EXPECT_EQ(solver.methodUsed(), m <= AlSolver::kMaxSchurRows ? AlMethod::BlockSchur : AlMethod::SparseLdlt);
+    EXPECT_EQ(solver.methodUsed(), m <= AlSolver::kMaxDenseSchurRows ? AlMethod::BlockSchur : AlMethod::SparseSchur);
     // x_{2i} - x_{2i+1} = 0 under Q = e_{2i}: both move at 1/2.
     const AlResult r = solver.accelerations(Eigen::VectorXd::Unit(n, 0), Eigen::VectorXd::Zero(m), 1e-12, 50);
     EXPECT_NEAR(r.vdot[0], 0.5, 1e-12);
