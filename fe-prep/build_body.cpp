@@ -512,7 +512,9 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     res.rigid_share_kept_max = cbr.rigid_share_kept_max;
     body.reduction = "craig_bampton: " + std::to_string(res.constraint_modes) + " constraint modes + " +
                      std::to_string(res.normal_modes) + " fixed-interface modes - " +
-                     std::to_string(res.rigid_removed) + " rigid = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
+                     std::to_string(res.rigid_removed) + " rigid" +
+                     (cbr.massless_condensed ? " - " + std::to_string(cbr.massless_condensed) + " massless" : "") +
+                     " = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
   } else {
     body.eigenvalues = modal.eigenvalues;
     body.shapes.resize(6 * mesh.nodeCount(), modal.eigenvalues.size());

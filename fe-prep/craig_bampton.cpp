@@ -3,6 +3,7 @@
 #include "fe-prep/static_response.h"
 
 #include "fe-prep/petsc_handles.h"
+#include "fe-prep/ritz_basis.h"
 
 #include <stdexcept>
 #include <string>
@@ -51,11 +52,10 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
     KB.col(j) = multiply(in.K_free, Bf.col(j));
     MB.col(j) = multiply(in.M_free, Bf.col(j));
   }
-  Eigen::MatrixXd Kr = Bf.transpose() * KB, Mr = Bf.transpose() * MB;
-  Kr = 0.5 * (Kr + Kr.transpose()).eval();
-  Mr = 0.5 * (Mr + Mr.transpose()).eval();
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kr, Mr);
-  if (es.info() != Eigen::Success) throw std::runtime_error("craig_bampton: the reduced eigenproblem failed");
+  // Massless boundary DOF (a clamped shell node's drilling rotation) are
+  // condensed, dependent vectors dropped (ritz_basis.h).
+  const RitzSolution es = ritzEigen(Bf.transpose() * KB, Bf.transpose() * MB);
+  out.massless_condensed = es.massless;
   // Rigid share of each eigenvector: b^T G^-1 b, b = R^T M (B x), G = R^T M R.
   const long r = in.rigid.cols();
   Eigen::MatrixXd MRf(in.free->reduced, r), Rf(in.free->reduced, r);
@@ -65,7 +65,7 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
   }
   const Eigen::MatrixXd G = Rf.transpose() * MRf;
   const Eigen::MatrixXd Ginv = G.ldlt().solve(Eigen::MatrixXd::Identity(r, r));
-  const Eigen::MatrixXd X = es.eigenvectors();  // X^T Mr X = I
+  const Eigen::MatrixXd& X = es.X;  // X^T Mr X = I
   const Eigen::MatrixXd BtMR = Bf.transpose() * MRf;  // (nb + nk, r)
   std::vector<long> kept;
   std::vector<double> removed;
@@ -73,7 +73,7 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
     const Eigen::VectorXd bk = BtMR.transpose() * X.col(k);
     const double share = bk.dot(Ginv * bk);
     if (share > 0.5) {
-      removed.push_back(es.eigenvalues()(k));
+      removed.push_back(es.eigenvalues(k));
       out.rigid_share_removed_min = std::min(out.rigid_share_removed_min, share);
     } else {
       kept.push_back(k);
@@ -83,7 +83,7 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
   out.eigenvalues.resize(static_cast<long>(kept.size()));
   out.shapes.resize(N, static_cast<long>(kept.size()));
   for (std::size_t i = 0; i < kept.size(); ++i) {
-    out.eigenvalues(static_cast<long>(i)) = es.eigenvalues()(kept[i]);
+    out.eigenvalues(static_cast<long>(i)) = es.eigenvalues(kept[i]);
     Eigen::VectorXd x = B * X.col(kept[i]);
     Eigen::Index imax;
     x.cwiseAbs().maxCoeff(&imax);

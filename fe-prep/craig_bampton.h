@@ -8,7 +8,7 @@
 // "lift"), T the reference-condition map (fixed interfaces), so psi_j is the
 // static response to that unit boundary motion. With B = [Psi Phi] the reduced
 // K_r = B^T K B, M_r = B^T M B (of the free body) are diagonalised,
-// K_r x = lambda M_r x; the eigenvectors that are rigid motions (their share of
+// K_r x = lambda M_r x (ritzEigen: massless directions condensed); the eigenvectors that are rigid motions (their share of
 // the rigid-motion space above one half) are removed, the others give the
 // file's shapes B x (M-orthonormal) and eigenvalues, so /modes/ keeps its
 // meaning (contracts.md, fe-prep, reduction: craig_bampton).
@@ -40,6 +40,7 @@ struct CraigBamptonResult {
   Eigen::MatrixXd constraint_modes;// (6 n, n_boundary), the static constraint modes
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
+  long massless_condensed = 0;     // basis directions without mass, condensed (ritz_basis.h)
 };
 
 CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in);

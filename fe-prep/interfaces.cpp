@@ -39,14 +39,32 @@ Eigen::MatrixXd distributingMap(const Mesh& mesh, const std::vector<long>& nodes
   Eigen::Matrix<double, 6, 6> S = Eigen::Matrix<double, 6, 6>::Identity();
   S.bottomRightCorner<3, 3>() *= 1.0 / std::max(Lc, 1e-12);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(S * A * S);
-  const bool rotations = es.eigenvalues()(0) < 1e-8 * es.eigenvalues()(5);
+  // The rotations the translations leave undetermined: the rotation parts of
+  // A's null vectors (about the line of collinear nodes; all three for one
+  // node). Only those join the fit: a shell's drilling rotation (about its
+  // normal, a fictitious stiffness and no mass) must not, or the point's
+  // in-plane rotation of an edge patch would follow the drilling DOF (a
+  // massless, nearly free boundary DOF: docs/fe-prep.md, Craig-Bampton).
+  Eigen::MatrixXd null_rot(3, 0);
+  for (int k = 0; k < 6; ++k)
+    if (es.eigenvalues()(k) < 1e-8 * es.eigenvalues()(5)) {
+      null_rot.conservativeResize(3, null_rot.cols() + 1);
+      null_rot.rightCols(1) = es.eigenvectors().col(k).tail<3>();
+    }
+  const bool rotations = null_rot.cols() > 0;
+  Eigen::Matrix3d Pd = Eigen::Matrix3d::Zero();  // projector onto the undetermined rotations
+  if (rotations) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(null_rot, Eigen::ComputeThinU);
+    for (long k = 0; k < svd.singularValues().size(); ++k)
+      if (svd.singularValues()(k) > 1e-8 * svd.singularValues()(0)) Pd += svd.matrixU().col(k) * svd.matrixU().col(k).transpose();
+  }
   const double wr = rotations ? std::max(Lc2, 1e-24) : 0.0;
-  if (rotations) A.bottomRightCorner<3, 3>() += wr * weights.sum() * Eigen::Matrix3d::Identity();
+  if (rotations) A.bottomRightCorner<3, 3>() += wr * weights.sum() * Pd;
   const Eigen::Matrix<double, 6, 6> Ainv = A.inverse();
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(6, 6 * p);
   for (long i = 0; i < p; ++i) {
     W.block(0, 6 * i, 6, 3) = weights(i) * Ainv * G[static_cast<std::size_t>(i)].transpose();
-    if (rotations) W.block(0, 6 * i + 3, 6, 3) = weights(i) * wr * Ainv.rightCols<3>();
+    if (rotations) W.block(0, 6 * i + 3, 6, 3) = weights(i) * wr * Ainv.rightCols<3>() * Pd;
   }
   return W;
 }

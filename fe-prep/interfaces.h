@@ -10,10 +10,11 @@
 //   minimise sum_i w_i |u_i - G_i [u_P; theta_P]|^2
 //   => [u_P; theta_P] = A^-1 sum_i w_i G_i^T u_i,  A = sum_i w_i G_i^T G_i,
 // the weights w_i the nodes' tributary areas (shells) or lengths (beams). When
-// the translations alone cannot fix the rotation (a single node, collinear beam
-// nodes: A singular) the nodal rotations join the fit with weight w_i Lc^2 (Lc
-// the patch size): a single node then gives exactly the rigid offset of the
-// point kind. By virtual work the same W distributes a force at P to the nodes
+// the translations alone cannot fix the rotation (a single node, collinear
+// nodes: A singular) the nodal rotations about the undetermined axes (only
+// those: never a shell's drilling rotation of an edge patch) join the fit with
+// weight w_i Lc^2 (Lc the patch size): a single node then gives exactly the
+// rigid offset of the point kind. By virtual work the same W distributes a force at P to the nodes
 // (F_i = W_i^T F): joints and forces act on the whole patch.
 #include <Eigen/Dense>
 #include <string>
