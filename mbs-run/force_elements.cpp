@@ -89,22 +89,35 @@ void rotationalSpringDamper(const Context& c, const ForceElement& fe, ForceSums&
 
 // Force F = k (L - L0) + c L_dot along the line between two points, pulling
 // them together when stretched; V = k (L - L0)^2 / 2.
-void translationalSpringDamper(const Context& c, const ForceElement& fe, ForceSums& s) {
-  const Attached ai = attachedPoint(c.P[fe.body_i], fe.point_i, fe.shapes_i.psi);
-  const Attached aj = attachedPoint(c.P[fe.body_j], fe.point_j, fe.shapes_j.psi);
+struct SpringState {
+  double L = 0.0, Ld = 0.0, F = 0.0;
+  Vector3d e = Vector3d::Zero();  // from point i to point j
+};
+
+SpringState springState(const std::vector<BodyPose>& P, const ForceElement& fe) {
+  const Attached ai = attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi);
+  const Attached aj = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi);
   const Vector3d d = aj.x - ai.x;
-  const double L = d.norm();
+  SpringState s;
+  s.L = d.norm();
   // At L = 0 the direction is undefined; the force is continuous only for L > 0.
-  if (c.forces && L > 0.0) {
-    const Vector3d e = d / L;
-    const double Ld = e.dot(aj.xdot - ai.xdot);
-    const double F = fe.stiffness * (L - fe.free_length) + fe.damping * Ld;
-    addForceAt(c, fe.body_i, fe.point_i, fe.shapes_i, F * e, s.Q);
-    addForceAt(c, fe.body_j, fe.point_j, fe.shapes_j, -F * e, s.Q);
-    s.dissipation += fe.damping * Ld * Ld;
+  if (s.L > 0.0) {
+    s.e = d / s.L;
+    s.Ld = s.e.dot(aj.xdot - ai.xdot);
+    s.F = fe.stiffness * (s.L - fe.free_length) + fe.damping * s.Ld;
+  }
+  return s;
+}
+
+void translationalSpringDamper(const Context& c, const ForceElement& fe, ForceSums& s) {
+  const SpringState sp = springState(c.P, fe);
+  if (c.forces && sp.L > 0.0) {
+    addForceAt(c, fe.body_i, fe.point_i, fe.shapes_i, sp.F * sp.e, s.Q);
+    addForceAt(c, fe.body_j, fe.point_j, fe.shapes_j, -sp.F * sp.e, s.Q);
+    s.dissipation += fe.damping * sp.Ld * sp.Ld;
   }
   if (c.potential) {
-    const double stretch = L - fe.free_length;
+    const double stretch = sp.L - fe.free_length;
     s.potential += 0.5 * fe.stiffness * stretch * stretch;
   }
 }
@@ -136,6 +149,19 @@ void addForceElement(const Model& model, const ForceElement& fe, const std::vect
     case ForceType::TranslationalSpringDamper: translationalSpringDamper(c, fe, sums); break;
     case ForceType::ConstantForce: constantForce(c, fe, sums); break;
     case ForceType::ConstantTorque: constantTorque(c, fe, sums); break;
+  }
+}
+
+void interfaceForces(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     std::vector<InterfaceForce>& out) {
+  (void)model;
+  if (fe.type == ForceType::TranslationalSpringDamper && (!fe.interface_i.empty() || !fe.interface_j.empty())) {
+    const SpringState sp = springState(P, fe);
+    if (sp.L <= 0.0) return;
+    if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, sp.F * sp.e});
+    if (!fe.interface_j.empty()) out.push_back({fe.body_j, &fe.interface_j, -sp.F * sp.e});
+  } else if (fe.type == ForceType::ConstantForce && !fe.interface_i.empty()) {
+    out.push_back({fe.body_i, &fe.interface_i, fe.vector});
   }
 }
 

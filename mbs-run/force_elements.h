@@ -33,6 +33,22 @@ enum class ForceQuantity { ForcesAndPowers, Potential };
 void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
                      const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums);
 
+// A force a point element exerts on a body at one of its interfaces (global
+// axes): what stiffens that body (flexible/geometric_stiffening.h).
+struct InterfaceForce {
+  int body = -1;
+  const std::string* interface = nullptr;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+};
+
+// The forces element `fe` applies at named interfaces at poses P: a
+// translational spring-damper's F e and -F e at its two points, a constant
+// force at its point; none for gravity (an inertial case of its own) and the
+// torques (a pure moment at a point: not among the stiffening loads). Appends
+// to `out`.
+void interfaceForces(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     std::vector<InterfaceForce>& out);
+
 // "NAME (type)", or "#k (type)" for an unnamed element, for messages.
 std::string forceElementLabel(const Model& model, int index);
 

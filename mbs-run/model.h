@@ -131,6 +131,9 @@ struct ForceElement {
   int body_i = -1, body_j = -1;         // translational spring / constant force (body_i)
   Vector3d point_i = Vector3d::Zero(), point_j = Vector3d::Zero();
   PointShapes shapes_i, shapes_j;
+  // The flexible body's interface named as the point, empty for coordinates
+  // (its force there stiffens the body: flexible/geometric_stiffening.h).
+  std::string interface_i, interface_j;
   double stiffness = 0.0, free_length = 0.0;  // translational spring
 };
 

@@ -330,6 +330,8 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     if (!p.isSequence() || p.size() != 2) p.fail("expected two points");
     fe.point_i = pointRef(m, fe.body_i, p.at(0), fe.shapes_i);
     fe.point_j = pointRef(m, fe.body_j, p.at(1), fe.shapes_j);
+    if (p.at(0).isScalar()) fe.interface_i = p.at(0).asString();
+    if (p.at(1).isScalar()) fe.interface_j = p.at(1).asString();
     fe.stiffness = f["stiffness"].asNonNegative();
     fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
     fe.free_length = f["free_length"].asNonNegative();
@@ -338,6 +340,7 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.type = ForceType::ConstantForce;
     fe.body_i = bodyRef(m, f["body"]);
     fe.point_i = f.has("point") ? pointRef(m, fe.body_i, f["point"], fe.shapes_i) : m.bodies[fe.body_i].com;
+    if (f.has("point") && f["point"].isScalar()) fe.interface_i = f["point"].asString();
     if (!f.has("point")) {
       fe.shapes_i.psi = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);
       fe.shapes_i.theta = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);

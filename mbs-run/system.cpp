@@ -24,6 +24,17 @@ System::System(const Model& model) : model_(model) {
   }
   force_on_.resize(model.forces.size());
   for (std::size_t f = 0; f < model.forces.size(); ++f) force_on_[f] = model.forces[f].enabled;
+  // Force elements with a point at a stiffened body's interface (only these are
+  // looked at per evaluation: nothing is computed when stiffening is off).
+  stiffened_force_.assign(model.forces.size(), 0);
+  auto stiffened = [&](int body, const std::string& name) {
+    if (body < 0 || name.empty()) return false;
+    const Body& b = model.bodies[static_cast<std::size_t>(body)];
+    return !b.fixed && b.modes > 0 && b.flex->stiffening && b.flex->stiffening->interfaces.count(name) > 0;
+  };
+  for (std::size_t f = 0; f < model.forces.size(); ++f)
+    stiffened_force_[f] = stiffened(model.forces[f].body_i, model.forces[f].interface_i) ||
+                          stiffened(model.forces[f].body_j, model.forces[f].interface_j);
   solver_.setMethod(model.settings.linear_solver);
   // A modal mass block diagonal to rounding (fe-prep normalises the modes
   // with the body's own lumped mass, so it is the identity to ~1e-15) makes
@@ -264,6 +275,22 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     const auto it = b.flex->stiffening->interfaces.find(name);
     return it == b.flex->stiffening->interfaces.end() ? nullptr : &it->second;
   };
+  // Force elements acting at an interface of a stiffened body (springs,
+  // dampers, constant forces): their force there, body axes, weights the
+  // interface's unit-force cases. It depends on the state only, so it goes
+  // into this first solve.
+  interface_forces_.clear();
+  for (std::size_t f = 0; f < model_.forces.size(); ++f)
+    if (force_on_[f] && stiffened_force_[f]) interfaceForces(model_, model_.forces[f], P_, interface_forces_);
+  for (const InterfaceForce& l : interface_forces_) {
+    const std::array<Eigen::MatrixXd, 6>* K = interfaceCases(l.body, *l.interface);
+    if (!K) continue;
+    const Body& b = model_.bodies[static_cast<std::size_t>(l.body)];
+    const Vector3d F = P_[l.body].A.transpose() * l.force;
+    const VectorXd f = (F(0) * (*K)[0] + F(1) * (*K)[1] + F(2) * (*K)[2]) * P_[l.body].modal;
+    Q.segment(b.dof_index + 6, b.modes) -= f;
+    stiffening_power -= P_[l.body].modal_rate.dot(f);
+  }
   bool interface_stiffening = false;
   for (std::size_t j = 0; j < model_.joints.size(); ++j) {
     const Joint& jt = model_.joints[j];

@@ -124,6 +124,8 @@ class System {
   const Model& model_;
   std::vector<JointRuntime> joints_;
   std::vector<char> force_on_;
+  std::vector<char> stiffened_force_;              // acts at a stiffened body's interface
+  std::vector<InterfaceForce> interface_forces_;   // scratch of derivative()
   std::vector<int> row_of_joint_;
   // Workspace.
   std::vector<BodyPose> P_;

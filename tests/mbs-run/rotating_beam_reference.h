@@ -14,9 +14,12 @@
 // (Optionally a hanging beam's gravity tension, a constant tip tension, and a
 // tip point mass M that adds M to the tip's translational mass and M Omega^2 L
 // to the tension everywhere, below.)
-// Published check of the flapwise values (test_geometric_stiffness.cpp):
-// Wright, Smith, Thresher & Wang, J. Appl. Mech. 49 (1982) 197-202, and Hodges &
-// Rutkowski, AIAA J. 19 (1981) 1459-1466.
+// Checked in tests/fe-prep/test_geometric_stiffness.cpp
+// (RotatingBeamReferenceMatchesPublishedTables): its convergence under
+// refinement, the cantilever's closed form at rest, Southwell's coefficients,
+// and the flapwise values attributed to Wright, Smith, Thresher & Wang, J. Appl.
+// Mech. 49 (1982) 197-202, and Hodges & Rutkowski, AIAA J. 19 (1981) 1459-1466
+// (quoted from memory: no copy of those tables was found to cite; see there).
 #include <Eigen/Dense>
 
 #include <cmath>
