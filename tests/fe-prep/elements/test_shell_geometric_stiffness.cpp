@@ -98,7 +98,7 @@ TEST(ShellGeometricStiffness, SameEnergyWhicheverWayTheElementFaces) {
   EXPECT_NEAR(e2 / e, 1.0, 1e-12);
 }
 
-TEST(ShellGeometricStiffness, MembraneForcesOfAUniformStrain) {
+TEST(ShellGeometricStiffness, MembraneForcesOfUniformStrainAndCurvature) {
   // u = e_x x, v = e_y y + g x: N = A [e_x, e_y, g] exactly (CST).
   Eigen::Matrix3d xyz;
   xyz << 0, 0, 0, 1.0, 0.2, 0, 0.3, 0.8, 0;
@@ -108,6 +108,19 @@ TEST(ShellGeometricStiffness, MembraneForcesOfAUniformStrain) {
   const Eigen::Vector3d strain(1e-4, -2e-4, 3e-5);
   const Eigen::Vector3d N = shellMembraneForces(xyz, thinPlate(), ShellKind::DKT, Eigen::Vector3d::UnitX(), q);
   EXPECT_LT((N - thinPlate().A * strain).norm(), 1e-10 * N.norm());
+  // An unsymmetric [0/90] laminate (B != 0) bent to the constant curvature of
+  // w = c3 x^2 + c4 x y + c5 y^2 (kappa = d beta/dx with beta = -grad w:
+  // [-2 c3, -2 c5, -2 c4]) with no mid-plane strain: N = B kappa, exactly (DKT
+  // reproduces constant curvature).
+  std::vector<test::OrthoPly> plies;
+  for (double ang : {0.0, 90.0}) plies.push_back({138e9, 9e9, 7.1e9, 7.1e9, 3.4e9, 0.3, 1600, 0.001, ang});
+  const LaminateStiffness lam = test::orthotropicLaminate(plies);
+  ASSERT_GT(lam.B.cwiseAbs().maxCoeff(), 0.01 * lam.A.cwiseAbs().maxCoeff() * lam.thickness);
+  c << 0.0, 0.0, 0.0, 1e-3, -4e-4, 2e-3;
+  const Vector18d qb = polynomialDofs(xyz, c, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero());
+  const Eigen::Vector3d kappa(-2 * c(3), -2 * c(5), -2 * c(4));
+  const Eigen::Vector3d Nb = shellMembraneForces(xyz, lam, ShellKind::DKT, Eigen::Vector3d::UnitX(), qb);
+  EXPECT_LT((Nb - lam.B * kappa).norm(), 1e-10 * (lam.B * kappa).norm());
 }
 
 // Smallest load factor lambda of (K + lambda K_G(N)) x = 0 on the bending DOF of
