@@ -1,5 +1,6 @@
 #include "fe-prep/body_spec.h"
 
+#include <algorithm>
 #include <set>
 
 #include "common/files.h"
@@ -268,9 +269,37 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (b.has("modes") && b.has("max_frequency_hz")) b.fail("give either modes: N or max_frequency_hz: F, not both");
   if (b.has("modes") && b["modes"].isMap()) {
     const InputNode m = b["modes"];
-    m.allowKeys({"static_error"});
-    spec.static_error = m["static_error"].asPositive();
-    if (spec.static_error >= 1) m["static_error"].fail("expected a share below 1 (e.g. 0.01 for 1 %)");
+    m.allowKeys({"static_error", "count", "static_correction"});
+    if (m.has("static_error") == m.has("count"))
+      m.fail("expected either count: N or static_error: E in modes: {...}");
+    if (m.has("count")) {
+      spec.modes_node = m["count"];
+      spec.modes = m["count"].asInt();
+      if (spec.modes < 1) m["count"].fail("expected a positive number of modes");
+    } else {
+      spec.static_error = m["static_error"].asPositive();
+      if (spec.static_error >= 1) m["static_error"].fail("expected a share below 1 (e.g. 0.01 for 1 %)");
+    }
+    if (m.has("static_correction")) {
+      const InputNode c = m["static_correction"];
+      spec.static_correction_node = c;
+      if (c.isSequence()) {
+        if (c.size() == 0) c.fail("expected true, false or a list of interface names");
+        for (std::size_t i = 0; i < c.size(); ++i) {
+          const std::string name = c.at(i).asString();
+          if (std::none_of(spec.interfaces.begin(), spec.interfaces.end(), [&](const InterfaceSpec& f) { return f.name == name; })) {
+            std::vector<std::string> known;
+            for (const auto& f : spec.interfaces) known.push_back(f.name);
+            const std::string near = closestMatch(name, known);
+            c.at(i).fail("no interface '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+          }
+          spec.static_correction_interfaces.push_back(name);
+        }
+        spec.static_correction = true;
+      } else {
+        spec.static_correction = c.asBool();
+      }
+    }
   } else if (b.has("modes")) {
     spec.modes_node = b["modes"];
     spec.modes = b["modes"].asInt();
@@ -294,6 +323,13 @@ BodySpec parseBodySpec(const InputNode& root) {
     b["modes"].fail("static_error chooses free (constrained) modes; a craig_bampton basis is statically complete at its boundary already");
   if (spec.static_error > 0 && spec.reference.empty())
     b["modes"].fail("static_error needs a reference that holds the body (reference: {clamp: [...]}): a free body has no static deflection");
+  if (spec.static_correction && spec.craig_bampton)
+    spec.static_correction_node.fail("static_correction augments free (constrained) modes; a craig_bampton basis is statically complete at its boundary already");
+  if (spec.static_correction && spec.reference.empty())
+    spec.static_correction_node.fail("static_correction needs a reference that holds the body (reference: {clamp: [...]}): "
+                                     "the attachment modes are static responses of the held body");
+  if (spec.static_correction && spec.interfaces.empty())
+    spec.static_correction_node.fail("static_correction needs interfaces: the unit loads act there");
   if (spec.craig_bampton && spec.reference.empty())
     b["reduction"].fail("craig_bampton needs its boundary in reference: (clamp: or pin: the interfaces where the body is joined)");
   if (b.has("geometric_stiffness")) {

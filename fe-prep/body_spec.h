@@ -69,6 +69,12 @@ struct BodySpec {
   InputNode modes_node;  // where `modes:` was given, for errors found once the mesh is known
   double static_error = 0.0;  // modes: {static_error: e}: the fewest modes that miss at most e (static_response.h)
   double max_frequency_hz = 0.0;
+  // modes: {count: N, static_correction: true | [interfaces]}: the kept modes
+  // augmented with the residual static responses (attachment modes) to unit
+  // loads at the interfaces, re-diagonalised (residual_flexibility.h).
+  bool static_correction = false;
+  std::vector<std::string> static_correction_interfaces;  // empty: every interface the reference does not hold
+  InputNode static_correction_node;
   bool lumped = true;  // false (mass: consistent): consistent mass in the eigenproblem
   // mass: lumped_moments (default) and consistent: the nodal masses (/mass/nodal,
   // the invariants) moved between nodes so that the body's mass, first and second

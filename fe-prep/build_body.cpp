@@ -19,12 +19,14 @@
 #include "fe-prep/geometric_stiffness.h"
 #include "fe-prep/interfaces.h"
 #include "fe-prep/reference_conditions.h"
+#include "fe-prep/residual_flexibility.h"
 #include "fe-prep/static_response.h"
 #include "fe-prep/elements/beam_element.h"
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mass_lumping.h"
 #include "fe-prep/modal_solver.h"
 #include "fe-prep/panel_mesher.h"
+#include "fe-prep/petsc_handles.h"
 
 namespace fc::feprep {
 namespace {
@@ -357,15 +359,19 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   // holds the body (static_response.h): the yardstick of the modes' truncation.
   const bool static_check = !spec.craig_bampton && rigid.cols() == 0 && !mesh_interfaces.empty();
   std::vector<Eigen::VectorXd> compliance;
+  Eigen::MatrixXd loads, u;  // unit loads at every interface and the held body's static responses (full DOF)
   if (static_check) {
-    Eigen::MatrixXd loads(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
+    loads.resize(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
       loads.middleCols(6 * static_cast<long>(k), 6) = interfaceLoads(mesh_interfaces[k], mesh);
-    const Eigen::MatrixXd u = solveStatic(comm, sys.K, map, loads);
+    u = solveStatic(comm, sys.K, map, loads);
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
       compliance.push_back(referencePointShapes(mesh_interfaces[k], mesh, u.middleCols(6 * static_cast<long>(k), 6)).diagonal());
   } else if (spec.static_error > 0) {
     spec.reference.front().node.fail("modes: {static_error: ...} needs interfaces and a reference that holds every rigid motion of the body");
+  } else if (spec.static_correction) {
+    spec.static_correction_node.fail("static_correction needs a reference that holds every rigid motion of the body "
+                                     "(clamp an interface or pin three points)");
   }
   Eigen::Vector2d compliance_scale = Eigen::Vector2d::Zero();
   for (const auto& c : compliance)
@@ -515,6 +521,46 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
                      std::to_string(res.rigid_removed) + " rigid" +
                      (cbr.massless_condensed ? " - " + std::to_string(cbr.massless_condensed) + " massless" : "") +
                      " = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
+  } else if (spec.static_correction) {
+    // Residual-flexibility correction (residual_flexibility.h): the static
+    // responses to unit loads at the chosen interfaces, less what the modes
+    // hold, join the modes; the whole is re-diagonalised.
+    std::vector<long> cols;
+    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
+      const auto& only = spec.static_correction_interfaces;
+      if (!only.empty() && std::find(only.begin(), only.end(), mesh_interfaces[k].name) == only.end()) continue;
+      for (long d = 0; d < 6; ++d) cols.push_back(6 * static_cast<long>(k) + d);
+    }
+    const long m = static_cast<long>(cols.size()), r = map.reduced, nm = modal.eigenvalues.size();
+    Eigen::MatrixXd A(r, m), MA(r, m), KR(r, m), MR(r, m);
+    Eigen::VectorXd KA_diag(m);
+    for (long j = 0; j < m; ++j) {
+      A.col(j) = map.restrict(u.col(cols[static_cast<std::size_t>(j)]));
+      MA.col(j) = multiply(sys.M, A.col(j));
+      KA_diag(j) = A.col(j).dot(reduceForce(map, loads.col(cols[static_cast<std::size_t>(j)])));  // A^T K A = A^T F
+    }
+    const Eigen::MatrixXd R = residualVectors(modal.vectors, A, MA);
+    for (long j = 0; j < m; ++j) {
+      KR.col(j) = multiply(sys.K, R.col(j));
+      MR.col(j) = multiply(sys.M, R.col(j));
+    }
+    const AugmentedBasis ab = augmentBasis(modal.vectors, modal.eigenvalues, R, KR, MR, KA_diag);
+    Eigen::MatrixXd Bred(r, nm + m);
+    Bred << modal.vectors, R;
+    body.eigenvalues = ab.eigenvalues;
+    body.shapes.resize(6 * mesh.nodeCount(), ab.eigenvalues.size());
+    for (long j = 0; j < ab.eigenvalues.size(); ++j) {
+      Eigen::VectorXd x = map.expand(Bred * ab.coefficients.col(j));
+      Eigen::Index imax;
+      x.cwiseAbs().maxCoeff(&imax);
+      if (x(imax) < 0) x = -x;  // the modal solver's sign convention
+      body.shapes.col(j) = x;
+    }
+    res.attachment_modes = m - ab.in_span - ab.dependent - ab.massless;
+    body.reduction = "free + static correction: " + std::to_string(nm) + " modes + " + std::to_string(m) +
+                     " unit loads - " + std::to_string(ab.in_span + ab.dependent) + " in the span" +
+                     (ab.massless ? " - " + std::to_string(ab.massless) + " massless" : "") + " = " +
+                     std::to_string(ab.eigenvalues.size()) + " shapes";
   } else {
     body.eigenvalues = modal.eigenvalues;
     body.shapes.resize(6 * mesh.nodeCount(), modal.eigenvalues.size());

@@ -26,6 +26,7 @@ struct BuildResult {
   long reduced_dofs = 0;  // after the reference conditions
   long rigid_removed = 0;
   long constraint_modes = 0, normal_modes = 0;  // reduction: craig_bampton
+  long attachment_modes = 0;  // modes: {static_correction}: residual vectors kept (residual_flexibility.h)
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
   // Moment-consistent lumping (fe-prep/mass_lumping.h): applied, and the smallest
