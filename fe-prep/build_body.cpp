@@ -529,7 +529,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
       const auto& only = spec.static_correction_interfaces;
       if (!only.empty() && std::find(only.begin(), only.end(), mesh_interfaces[k].name) == only.end()) continue;
-      for (long d = 0; d < 6; ++d) cols.push_back(6 * static_cast<long>(k) + d);
+      // Directions the reference holds (a clamped point, a pinned point's
+      // translations) have no static response: nothing to add.
+      for (long d = 0; d < 6; ++d)
+        if (compliance[k](d) > 1e-9 * compliance_scale(d / 3)) cols.push_back(6 * static_cast<long>(k) + d);
     }
     const long m = static_cast<long>(cols.size()), r = map.reduced, nm = modal.eigenvalues.size();
     Eigen::MatrixXd A(r, m), MA(r, m), KR(r, m), MR(r, m);
