@@ -10,6 +10,9 @@
 //     the same chain (tests/mbs-run/chain_reference.h, N <= 200: its dense
 //     mass matrix is O(N^3)): are the steps the physics' or ours?
 // Usage: bench_chains [t_end [N ...]]   (default 1 s; N = 10 50 200 1000)
+//        bench_chains tip N t_end rtol   (one run, one line: CPU s, steps,
+//        evaluations, free end (x, z) at t_end; for the side by side with
+//        Exudyn, bench/mbs-run/exudyn_chains.py)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +21,7 @@
 #include <vector>
 
 #include "../../tests/mbs-run/chain_reference.h"
+#include "common/rotations.h"
 #include "../../tests/mbs-run/helpers.h"
 #include "chain_scene.h"
 #include "mbs-run/integrator.h"
@@ -72,7 +76,21 @@ MinimalRun minimalCoordinates(int n, double t_end) {
 
 }  // namespace
 
+int tipRun(int n, double t_end, double rtol) {
+  char sim[200];
+  std::snprintf(sim, sizeof sim, "{t_end: %.17g, output_step: %.17g, rtol: %.17g, integrator: dopri5}", t_end,
+                t_end / 10, rtol);
+  const fc::mbs::Results r =
+      fc::mbs::simulate(fc::mbs::test::sceneFromText(fc::mbs::bench::rodChainScene(n, sim)), {true});
+  const Eigen::Vector3d tip =
+      r.position[n].back() + fc::rotationMatrix(r.orientation[n].back()) * Eigen::Vector3d(0.05, 0, 0);
+  std::printf("cpu %.6f steps %ld evals %ld tip %.15e %.15e status %s\n", r.cpu_seconds, r.steps, r.evaluations,
+              tip.x(), tip.z(), r.status.c_str());
+  return r.status == "completed" ? 0 : 1;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 5 && std::string(argv[1]) == "tip") return tipRun(std::atoi(argv[2]), std::atof(argv[3]), std::atof(argv[4]));
   const double t_end = argc > 1 ? std::atof(argv[1]) : 1.0;
   std::vector<int> sizes;
   for (int k = 2; k < argc; ++k) sizes.push_back(std::atoi(argv[k]));

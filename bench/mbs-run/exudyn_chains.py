@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Issue 17: rigid chains side by side with Exudyn's kinematic tree + DOPRI5.
+
+Not part of the build or CI: it needs an Exudyn build (see docs/benchmarks.md,
+"Rigid chains", for how it was built here from the Exudyn 1.11 sources with
+Debian's pybind11) and bench_chains from this repository's build.
+
+The same chain in both tools: N rods of 0.1 m, 0.1 kg, 10 mm diameter
+(bench/mbs-run/chain_scene.h), joints at the rod ends, released at rest from
+the horizontal under g = 9.81 m/s^2. mbs-run: 6 coordinates per rod, 5
+constraint rows per revolute joint about y, gravity -z (bench_chains tip ...).
+Exudyn: ObjectKinematicTree, N relative joint angles (RevoluteZ, gravity -y),
+explicit DOPRI5 with automatic step size; the rod's centroidal inertia is the
+same (the axial one only enters an idle spin). Both run at rtol r with
+atol = 1e-3 r (mbs-run's default), the longest step t_end (mbs-run: ten output
+steps; Exudyn: endTime / numberOfSteps). Each run's accuracy is the distance
+of the free end at t_end from a converged reference (mbs-run at rtol 1e-10,
+itself checked against the minimal-coordinate chain in
+tests/mbs-run/test_chain_reference.cpp; Exudyn at rtol 1e-10 agrees with it
+to 4e-12 m at N = 10, and from N = 50 its step control stalls at its minimum
+step at rtol 1e-9 and below, the rounding of its dense N x N mass-matrix solve
+being above atol); CPU is process time of the solve.
+
+Usage: exudyn_chains.py --exudyn DIR --bench PATH [--sizes 10 50 200] [--rtols ...] [--t-end T]
+  DIR: the folder holding the `exudyn` package with exudynCPPfast*.so in it.
+"""
+import argparse
+import math
+import subprocess
+import sys
+import time
+
+L, M, D, G = 0.1, 0.1, 0.01, 9.81
+I_AXIAL = 0.5 * M * (D / 2) ** 2
+I_TRANS = M * (3 * (D / 2) ** 2 + L * L) / 12
+
+
+def mbs_run(bench, n, t_end, rtol):
+    out = subprocess.run([bench, "tip", str(n), repr(t_end), repr(rtol)], capture_output=True, text=True,
+                         check=False).stdout.split()
+    v = dict(zip(out[0::2], out[1::2]))
+    tip = (float(out[out.index("tip") + 1]), float(out[out.index("tip") + 2]))
+    return {"cpu": float(v["cpu"]), "steps": int(v["steps"]), "evals": int(v["evals"]), "tip": tip,
+            "status": out[-1]}
+
+
+def exudyn_run(exu, n, t_end, rtol):
+    import numpy as np
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree
+    node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n,
+                                       initialCoordinates_t=[0.0] * n, numberOfODE2Coordinates=n))
+    mbs.AddObject(ObjectKinematicTree(
+        nodeNumber=node, jointTypes=[exu.JointType.RevoluteZ] * n, linkParents=list(range(-1, n - 1)),
+        jointTransformations=exu.Matrix3DList([np.eye(3)] * n),
+        jointOffsets=exu.Vector3DList([[0.0, 0.0, 0.0]] + [[L, 0.0, 0.0]] * (n - 1)),
+        linkInertiasCOM=exu.Matrix3DList([np.diag([I_AXIAL, I_TRANS, I_TRANS])] * n),
+        linkCOMs=exu.Vector3DList([[L / 2, 0.0, 0.0]] * n), linkMasses=[M] * n, gravity=[0.0, -G, 0.0]))
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ti = ss.timeIntegration
+    ti.endTime = t_end
+    ti.numberOfSteps = 1  # longest step t_end, as mbs-run's ten output steps here
+    ti.automaticStepSize = True
+    ti.initialStepSize = 1e-4  # its default, the longest step, sends the first step to minimumStepSize
+    ti.relativeTolerance = rtol
+    ti.absoluteTolerance = 1e-3 * rtol
+    ti.verboseMode = 0
+    ti.explicitIntegration.computeEndOfStepAccelerations = False  # would double the evaluations
+    ss.solutionSettings.writeSolutionToFile = False
+    ss.solutionSettings.sensorsWritePeriod = t_end
+    ss.displayComputationTime = False
+    ss.displayStatistics = False
+    ss.parallel.numberOfThreads = 1
+    c0 = time.process_time()
+    mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.DOPRI5)
+    cpu = time.process_time() - c0
+    q = mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)
+    phi = np.cumsum(q)
+    tip = (float(L * np.cos(phi).sum()), float(L * np.sin(phi).sum()))
+    steps = "-"
+    try:
+        it = mbs.sys["dynamicSolver"].it
+        steps = it.currentStepIndex
+    except Exception:
+        pass
+    return {"cpu": cpu, "tip": tip, "steps": steps}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exudyn", required=True)
+    ap.add_argument("--bench", required=True)
+    ap.add_argument("--sizes", type=int, nargs="*", default=[10, 50, 200])
+    ap.add_argument("--rtols", type=float, nargs="*", default=[1e-4, 1e-6, 1e-8])
+    ap.add_argument("--t-end", type=float, default=0.0, help="span [s]; default 1 s up to N = 50, 0.5 s above")
+    a = ap.parse_args()
+    sys.path.insert(0, a.exudyn)
+    sys.exudynFast = True  # the build without range checks, the fastest
+    import exudyn as exu
+    print(f"Exudyn {exu.config.Version()}; mbs-run {a.bench}\n")
+    print("| N | t_end [s] | rtol | mbs-run CPU s / sim s | mbs-run free-end error [m] | mbs-run steps | "
+          "Exudyn CPU s / sim s | Exudyn free-end error [m] | Exudyn / mbs-run CPU |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for n in a.sizes:
+        t_end = a.t_end if a.t_end > 0 else 1.0 if n <= 50 else 0.5
+        ref = mbs_run(a.bench, n, t_end, 1e-10)
+        print(f"| {n} | {t_end} | reference 1e-10 | {ref['cpu'] / t_end:.3g} | - | {ref['steps']} | | | |", flush=True)
+        for rtol in a.rtols:
+            r = mbs_run(a.bench, n, t_end, rtol)
+            e = exudyn_run(exu, n, t_end, rtol)
+            print(f"| {n} | {t_end} | {rtol:.0e} | {r['cpu'] / t_end:.3g} | {math.dist(r['tip'], ref['tip']):.1e} | "
+                  f"{r['steps']} | {e['cpu'] / t_end:.3g} | {math.dist(e['tip'], ref['tip']):.1e} | "
+                  f"{e['cpu'] / r['cpu']:.2f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
