@@ -88,6 +88,30 @@ def exudyn_run(exu, n, t_end, rtol):
     return {"cpu": cpu, "tip": tip, "steps": steps}
 
 
+def _child(exu_dir, n, t_end, rtol, queue):
+    sys.path.insert(0, exu_dir)
+    sys.exudynFast = True
+    import exudyn as exu
+    queue.put(exudyn_run(exu, n, t_end, rtol))
+
+
+def exudyn_timed(exu_dir, n, t_end, rtol, timeout):
+    """exudyn_run in a child process; None when it has no answer within
+    timeout s (from N = 200 at rtol 1e-6 its step control reaches its minimum
+    step, 1e-8 s, and crawls on)."""
+    import multiprocessing as mp
+    q = mp.Queue()
+    p = mp.Process(target=_child, args=(exu_dir, n, t_end, rtol, q))
+    p.start()
+    try:
+        return q.get(timeout=timeout)
+    except Exception:
+        return None
+    finally:
+        p.terminate()
+        p.join()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--exudyn", required=True)
@@ -109,10 +133,12 @@ def main():
         print(f"| {n} | {t_end} | reference 1e-10 | {ref['cpu'] / t_end:.3g} | - | {ref['steps']} | | | |", flush=True)
         for rtol in a.rtols:
             r = mbs_run(a.bench, n, t_end, rtol)
-            e = exudyn_run(exu, n, t_end, rtol)
+            timeout = max(120.0, 30.0 * r["cpu"])
+            e = exudyn_timed(a.exudyn, n, t_end, rtol, timeout)
+            exu_cols = (f"{e['cpu'] / t_end:.3g} | {math.dist(e['tip'], ref['tip']):.1e} | {e['cpu'] / r['cpu']:.2f}"
+                        if e else f"no answer in {timeout:.0f} s (wall) | - | > {timeout / r['cpu']:.0f}")
             print(f"| {n} | {t_end} | {rtol:.0e} | {r['cpu'] / t_end:.3g} | {math.dist(r['tip'], ref['tip']):.1e} | "
-                  f"{r['steps']} | {e['cpu'] / t_end:.3g} | {math.dist(e['tip'], ref['tip']):.1e} | "
-                  f"{e['cpu'] / r['cpu']:.2f} |", flush=True)
+                  f"{r['steps']} | {exu_cols} |", flush=True)
 
 
 if __name__ == "__main__":
