@@ -22,6 +22,7 @@ step at rtol 1e-9 and below, the rounding of its dense N x N mass-matrix solve
 being above atol); CPU is process time of the solve.
 
 Usage: exudyn_chains.py --exudyn DIR --bench PATH [--sizes 10 50 200] [--rtols ...] [--t-end T]
+                        [--ref-rtol R] [--per-eval]
   DIR: the folder holding the `exudyn` package with exudynCPPfast*.so in it.
 """
 import argparse
@@ -36,19 +37,19 @@ I_TRANS = M * (3 * (D / 2) ** 2 + L * L) / 12
 
 
 def mbs_run(bench, n, t_end, rtol):
-    out = subprocess.run([bench, "tip", str(n), repr(t_end), repr(rtol)], capture_output=True, text=True,
-                         check=False).stdout.split()
-    v = dict(zip(out[0::2], out[1::2]))
-    tip = (float(out[out.index("tip") + 1]), float(out[out.index("tip") + 2]))
-    return {"cpu": float(v["cpu"]), "steps": int(v["steps"]), "evals": int(v["evals"]), "tip": tip,
-            "status": out[-1]}
+    line = subprocess.run([bench, "tip", str(n), repr(t_end), repr(rtol)], capture_output=True, text=True,
+                          check=False).stdout
+    head, _, status = line.partition(" status ")
+    w = head.split()
+    return {"cpu": float(w[1]), "steps": int(w[3]), "evals": int(w[5]), "tip": (float(w[7]), float(w[8])),
+            "status": status.strip()}
 
 
-def exudyn_run(exu, n, t_end, rtol):
+def exudyn_chain(exu, n):
     import numpy as np
+    from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    from exudyn.itemInterface import NodeGenericODE2, ObjectKinematicTree
     node = mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * n, initialCoordinates=[0.0] * n,
                                        initialCoordinates_t=[0.0] * n, numberOfODE2Coordinates=n))
     mbs.AddObject(ObjectKinematicTree(
@@ -58,6 +59,34 @@ def exudyn_run(exu, n, t_end, rtol):
         linkInertiasCOM=exu.Matrix3DList([np.diag([I_AXIAL, I_TRANS, I_TRANS])] * n),
         linkCOMs=exu.Vector3DList([[L / 2, 0.0, 0.0]] * n), linkMasses=[M] * n, gravity=[0.0, -G, 0.0]))
     mbs.Assemble()
+    return SC, mbs, node
+
+
+def exudyn_eval_ms(exu, n):
+    """CPU of one evaluation of Exudyn's kinematic tree: the difference of 3
+    and 1 fixed RK4 steps (8 evaluations), which removes the set-up."""
+    SC, mbs, node = exudyn_chain(exu, n)
+    cpu = []
+    for steps in (1, 3):
+        ss = exu.SimulationSettings()
+        ti = ss.timeIntegration
+        ti.endTime = 1e-5 * steps
+        ti.numberOfSteps = steps
+        ti.automaticStepSize = False
+        ti.verboseMode = 0
+        ti.explicitIntegration.computeEndOfStepAccelerations = False
+        ss.solutionSettings.writeSolutionToFile = False
+        ss.displayComputationTime = False
+        ss.parallel.numberOfThreads = 1
+        c0 = time.process_time()
+        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.RK44)
+        cpu.append(time.process_time() - c0)
+    return 1e3 * (cpu[1] - cpu[0]) / 8
+
+
+def exudyn_run(exu, n, t_end, rtol):
+    import numpy as np
+    SC, mbs, node = exudyn_chain(exu, n)
     ss = exu.SimulationSettings()
     ti = ss.timeIntegration
     ti.endTime = t_end
@@ -119,26 +148,34 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="*", default=[10, 50, 200])
     ap.add_argument("--rtols", type=float, nargs="*", default=[1e-4, 1e-6, 1e-8])
     ap.add_argument("--t-end", type=float, default=0.0, help="span [s]; default 1 s up to N = 50, 0.5 s above")
+    ap.add_argument("--ref-rtol", type=float, default=1e-10, help="rtol of mbs-run's reference run")
+    ap.add_argument("--per-eval", action="store_true", help="only Exudyn's CPU per evaluation for each N")
     a = ap.parse_args()
     sys.path.insert(0, a.exudyn)
     sys.exudynFast = True  # the build without range checks, the fastest
     import exudyn as exu
     print(f"Exudyn {exu.config.Version()}; mbs-run {a.bench}\n")
+    if a.per_eval:
+        for n in a.sizes:
+            print(f"N = {n}: Exudyn {exudyn_eval_ms(exu, n):.3f} ms per evaluation", flush=True)
+        return
     print("| N | t_end [s] | rtol | mbs-run CPU s / sim s | mbs-run free-end error [m] | mbs-run steps | "
           "Exudyn CPU s / sim s | Exudyn free-end error [m] | Exudyn / mbs-run CPU |")
     print("|---|---|---|---|---|---|---|---|---|")
     for n in a.sizes:
         t_end = a.t_end if a.t_end > 0 else 1.0 if n <= 50 else 0.5
-        ref = mbs_run(a.bench, n, t_end, 1e-10)
-        print(f"| {n} | {t_end} | reference 1e-10 | {ref['cpu'] / t_end:.3g} | - | {ref['steps']} | | | |", flush=True)
+        ref = mbs_run(a.bench, n, t_end, a.ref_rtol)
+        print(f"| {n} | {t_end} | reference {a.ref_rtol:.0e} ({ref['status'][:40]}) | {ref['cpu'] / t_end:.3g} | - | "
+              f"{ref['steps']} | | | |", flush=True)
         for rtol in a.rtols:
             r = mbs_run(a.bench, n, t_end, rtol)
             timeout = max(120.0, 30.0 * r["cpu"])
             e = exudyn_timed(a.exudyn, n, t_end, rtol, timeout)
             exu_cols = (f"{e['cpu'] / t_end:.3g} | {math.dist(e['tip'], ref['tip']):.1e} | {e['cpu'] / r['cpu']:.2f}"
                         if e else f"no answer in {timeout:.0f} s (wall) | - | > {timeout / r['cpu']:.0f}")
+            note = "" if r["status"] == "completed" else f" ({r['status'][:40]})"
             print(f"| {n} | {t_end} | {rtol:.0e} | {r['cpu'] / t_end:.3g} | {math.dist(r['tip'], ref['tip']):.1e} | "
-                  f"{r['steps']} | {exu_cols} |", flush=True)
+                  f"{r['steps']}{note} | {exu_cols} |", flush=True)
 
 
 if __name__ == "__main__":
