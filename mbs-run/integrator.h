@@ -138,5 +138,8 @@ using StiffPart = std::function<StiffModalPart(double, const Eigen::VectorXd&)>;
 // linear solve (an nm x nm system, nm the modes) and the split stays exact:
 // accuracy never depends on how well L matches the Jacobian, only stability.
 std::unique_ptr<Integrator> makeImexArk3(Rhs f, StiffPart stiff, const Tolerances& tol);
+// The same split with Kennedy & Carpenter's ARK4(3)6L[2]SA (gamma = 1/4):
+// order 4, embedded order 3, six stages (five evaluations and f at the end).
+std::unique_ptr<Integrator> makeImexArk4(Rhs f, StiffPart stiff, const Tolerances& tol);
 
 }  // namespace fc::mbs

@@ -7,7 +7,7 @@
 //     real-time factor of `dopri5` and `imex`;
 // (Rigid chains, issue 17's third part: bench_chains.cpp.)
 // Usage: bench_integrators [A|B]... [modes] (all when none given; modes:
-// only that row of A, for profiling).
+// only that row of A, for profiling; "AE": A's per-evaluation rows only).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,7 +41,8 @@ Results run(const std::string& file, int modes, const char* integ, double rtol, 
   return fc::mbs::simulate(fc::mbs::test::sceneFromText(pendulumScene(file, modes, sim)), {true});
 }
 
-void modes(int only) {
+// evaluations_only ("AE"): the per-evaluation rows alone, no runs.
+void modes(int only, bool evaluations_only) {
   std::printf("\n### A. Beam pendulum, modes kept (from the horizontal, 0.5 s up to 16 modes, 0.1 s above; pinned-root modes, undamped)\n\n");
   std::printf("| modes | omega_max [rad/s] | integrator | rtol | CPU s / sim s | steps | rhs evals | tip [m] | tip diff vs rtol 1e-6 [m] | status |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
@@ -54,6 +55,29 @@ void modes(int only) {
     s.pinned_root = true;
     const auto bm = fc::mbs::test::cantileverBeam(s);
     const std::string file = fc::mbs::test::writeBeam(bm, "bench_modes");
+    {
+      // Per right-hand side and per renewal of the IMEX split, at the
+      // initial state (the costs do not depend on the state's values).
+      const fc::mbs::Model m = fc::mbs::test::sceneFromText(
+          pendulumScene(file, nm, "{t_end: 0.1, output_step: 0.01, rtol: 1e-4, integrator: imex}"));
+      fc::mbs::System sys(m);
+      Eigen::VectorXd yv = sys.initialState(), yd;
+      sys.initializeJoints(yv);
+      sys.project(0.0, yv);
+      const int reps = std::max(20, 200000 / (nm * nm));
+      std::clock_t c0 = std::clock();
+      for (int k = 0; k < reps; ++k) sys.derivative(0.0, yv, yd);
+      const double us_rhs = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / reps;
+      c0 = std::clock();
+      for (int k = 0; k < std::max(3, reps / nm); ++k) sys.modalSplit(0.0, yv);
+      const double us_split = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / std::max(3, reps / nm);
+      std::printf("| %d | per evaluation | %.1f us (%.3f us per mode) | modal split (response) | %.0f us | | | | | |\n", nm,
+                  us_rhs, us_rhs / nm, us_split);
+    }
+    if (evaluations_only) {
+      std::filesystem::remove(file);
+      continue;
+    }
     // Shorter spans for many modes (each run is one measurement, not a loop).
     const double t_end = nm <= 16 ? 0.5 : 0.1;
     // Above 16 modes rtol 1e-4 only (the undamped high modes ring at the
@@ -104,6 +128,6 @@ void stiff() {
 
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "AB";
-  if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0);
+  if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0, which.find('E') != std::string::npos);
   if (which.find('B') != std::string::npos) stiff();
 }

@@ -326,6 +326,48 @@ TEST(ImexArk3, ThirdOrderAndToleranceProportional) {
   EXPECT_LT(double(b.steps) / a.steps, 16.0);
 }
 
+// The orders of both IMEX pairs at fixed steps (max_step, tolerances too
+// loose to act) on the non-stiff forced oscillator, against its exact
+// solution: halving h divides the error by 2^p. Checks every order
+// condition of the coupled tableaux at once (a wrong coefficient drops the
+// order to 1 or 2). Bounds: p within 0.3 of 3 and 4 (measured below).
+TEST(ImexArk, FixedStepOrders) {
+  const ForcedOscillator p{4.0, 0.4};
+  auto errorAt = [&](bool four, double h) {
+    Tolerances tol;
+    tol.rtol = tol.atol = 1e3;
+    tol.max_step = h;
+    auto I = four ? makeImexArk4(p.rhs(), p.stiff(), tol) : makeImexArk3(p.rhs(), p.stiff(), tol);
+    return runOscillator(std::move(I), 2.0).err;
+  };
+  for (bool four : {false, true}) {
+    const double e1 = errorAt(four, 0.04), e2 = errorAt(four, 0.02);
+    const double order = std::log2(e1 / e2);
+    std::printf("[   info   ] ARK%s at h = 0.04 / 0.02: errors %.3e / %.3e, order %.2f\n", four ? "4(3)6L" : "3(2)4L", e1,
+                e2, order);
+    EXPECT_NEAR(order, four ? 4.0 : 3.0, 0.3);
+  }
+}
+
+// ARK4(3)6L[2]SA under error control: 1000x tighter tolerance buys ~1000x
+// smaller error at 1000^(1/4) = 5.6x the steps (4..8 for the controller's
+// discreteness), with the global errors below 30 rtol as for ARK3(2).
+TEST(ImexArk, FourthOrderToleranceProportional) {
+  const ForcedOscillator p{4.0, 0.4};
+  Tolerances t5, t8;
+  t5.rtol = t5.atol = 1e-5;
+  t8.rtol = t8.atol = 1e-8;
+  const OscillatorRun a = runOscillator(makeImexArk4(p.rhs(), p.stiff(), t5), 10.0);
+  const OscillatorRun b = runOscillator(makeImexArk4(p.rhs(), p.stiff(), t8), 10.0);
+  std::printf("[   info   ] ARK4, omega 2: rtol 1e-5 -> error %.2e (%ld steps), 1e-8 -> %.2e (%ld steps)\n", a.err,
+              a.steps, b.err, b.steps);
+  EXPECT_LT(a.err, 30 * 1e-5);
+  EXPECT_LT(b.err, 30 * 1e-8);
+  EXPECT_GT(a.err / b.err, 100.0);
+  EXPECT_GT(double(b.steps) / a.steps, 4.0);
+  EXPECT_LT(double(b.steps) / a.steps, 8.0);
+}
+
 // On a stiff undamped modal oscillator the IMEX method is stable at any step
 // (L-stable implicit part) but does not reach a large-step regime: once the
 // mode rings at the level of the tolerance the error estimate keeps
