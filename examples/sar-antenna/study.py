@@ -662,7 +662,9 @@ def write_doc(args, runs, unique, res, ref, scene_src):
       L += cb_convergence_text(args, R)
     else:
       L.append("The panels hang on distributing (RBE3) hinge patches of radius "
-               f"{HINGE_RADIUS:g} m (`--hinges distributed`, issue 16); the truss ends still act on one node each.\n")
+               f"{HINGE_RADIUS:g} m (`--hinges distributed`, issue 16); the truss ends still act on one node each, "
+               "and neither sequence falls steadily. With every joint on a bracket patch and Craig-Bampton panels "
+               "both do: [accuracy-cb.md](accuracy-cb.md).\n")
     L.append("## Measured runs\n")
     L.append(f"Each group changes one factor of the {'base' if is_cb(args) else chr(39).join(['paper', 's'])} "
              f"model ({tag(BASE)}: {'element size' if is_cb(args) else 'triangles'}/panel modes/truss "
