@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace fc::mbs {
 
@@ -253,10 +254,11 @@ bool AlSolver::factorizeSchur() {
   return ok_;
 }
 
-// The lower triangle of S's pattern: the diagonal, and for every block the
-// pairs of rows it touches (B.rows is sorted, so i >= j in B.rows is the
-// lower triangle). Each value has its slot; the LDL^T's symbolic analysis
-// (AMD ordering, elimination tree) is redone for the new pattern.
+// S's pattern: the diagonal, and for every block the pairs of rows it
+// touches (B.rows is sorted, so i >= j in B.rows is the lower triangle),
+// permuted by the AMD ordering of that pattern and stored as the upper
+// triangle. Each value has its slot; the LDL^T's symbolic analysis
+// (elimination tree, column counts) is redone for the new pattern.
 void AlSolver::buildSparsePattern() {
   const int m = int(Phi_.rows());
   std::vector<Eigen::Triplet<double>> t;
@@ -264,10 +266,28 @@ void AlSolver::buildSparsePattern() {
   for (const BlockData& B : blocks_)
     for (std::size_t j = 0; j < B.rows.size(); ++j)
       for (std::size_t i = j; i < B.rows.size(); ++i) t.emplace_back(B.rows[i], B.rows[j], 1.0);
+  SparseMatrixd lower(m, m);
+  lower.setFromTriplets(t.begin(), t.end());
+  const SparseMatrixd full = SparseMatrixd(lower.selfadjointView<Eigen::Lower>());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // new position -> row
+  Eigen::AMDOrdering<int>()(full, order);
+  s_perm_.resize(m);
+  for (int k = 0; k < m; ++k) s_perm_[order.indices()[k]] = k;
+  auto upper = [&](int r, int c) {
+    const int a = s_perm_[r], b = s_perm_[c];
+    return std::pair<int, int>(std::min(a, b), std::max(a, b));
+  };
+  for (auto& e : t) {
+    const auto [r, c] = upper(e.row(), e.col());
+    e = Eigen::Triplet<double>(r, c, 1.0);
+  }
   S_sparse_.resize(m, m);
   S_sparse_.setFromTriplets(t.begin(), t.end());
   S_sparse_.makeCompressed();
-  auto slot = [&](int r, int c) { return int(&S_sparse_.coeffRef(r, c) - S_sparse_.valuePtr()); };
+  auto slot = [&](int r, int c) {
+    const auto [a, b] = upper(r, c);
+    return int(&S_sparse_.coeffRef(a, b) - S_sparse_.valuePtr());
+  };
   s_diag_slot_.resize(m);
   for (int i = 0; i < m; ++i) s_diag_slot_[i] = slot(i, i);
   s_block_slot_.assign(blocks_.size(), {});
@@ -298,7 +318,14 @@ VectorXd AlSolver::multiplyM(const VectorXd& x) const {
 }
 
 VectorXd AlSolver::solveS(const VectorXd& r) const {
-  if (s_sparse_) return s_sparse_ldlt_.solve(r);
+  if (s_sparse_) {
+    VectorXd y(r.size());
+    for (Eigen::Index i = 0; i < r.size(); ++i) y[s_perm_[i]] = r[i];
+    y = s_sparse_ldlt_.solve(y);
+    VectorXd x(r.size());
+    for (Eigen::Index i = 0; i < r.size(); ++i) x[i] = y[s_perm_[i]];
+    return x;
+  }
   if (s_use_ldlt_) return s_ldlt_.solve(r);
   VectorXd x = s_L_.triangularView<Eigen::Lower>().solve(r);
   s_L_.triangularView<Eigen::Lower>().transpose().solveInPlace(x);

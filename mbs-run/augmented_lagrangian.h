@@ -168,14 +168,18 @@ class AlSolver {
   Eigen::MatrixXd s_L_;  // Cholesky factor of S (lower triangle)
   Eigen::LDLT<Eigen::MatrixXd> s_ldlt_;
   bool s_use_ldlt_ = false;
-  // Sparse S (lower triangle): the value slot of each diagonal entry and,
-  // per block, of each (i >= j) entry of its G in S's value array, kept
-  // while Phi's pattern is unchanged; the symbolic analysis likewise.
+  // Sparse S, stored already permuted by its fill-reducing (AMD) ordering,
+  // upper triangle: the LDL^T then factorises it in place, without the copy
+  // and permutation it would make on every factorisation. s_perm_[i] is the
+  // position of row i; the value slot of each diagonal entry and, per block,
+  // of each (i >= j) entry of its G are kept while Phi's pattern is
+  // unchanged, and the symbolic analysis likewise.
   bool s_sparse_ = false;
   SparseMatrixd S_sparse_;
+  std::vector<int> s_perm_;
   std::vector<int> s_diag_slot_;
   std::vector<std::vector<int>> s_block_slot_;
-  Eigen::SimplicialLDLT<SparseMatrixd> s_sparse_ldlt_;
+  Eigen::SimplicialLDLT<SparseMatrixd, Eigen::Upper, Eigen::NaturalOrdering<int>> s_sparse_ldlt_;
   bool s_sparse_analysed_ = false;
   void buildSparsePattern();
   Eigen::VectorXd solveS(const Eigen::VectorXd& r) const;
