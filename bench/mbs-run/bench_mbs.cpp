@@ -19,6 +19,7 @@
 #include "mbs-run/scene.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
+#include "rhs_benchmark.h"
 
 namespace {
 
@@ -51,15 +52,7 @@ BENCHMARK(SarTrBdf2)->DenseRange(4, 6, 1)->Unit(benchmark::kMillisecond)->Iterat
 
 void SarRightHandSide(benchmark::State& state) {
   const fc::mbs::Model m = sar();
-  fc::mbs::System sys(m);
-  Eigen::VectorXd y = sys.initialState(), yd;
-  sys.initializeJoints(y);
-  sys.project(0.0, y);
-  sys.initializeJoints(y);
-  for (auto _ : state) {
-    sys.derivative(0.0, y, yd);
-    benchmark::DoNotOptimize(yd.data());
-  }
+  fc::mbs::bench::timeRightHandSide(state, m);
 }
 BENCHMARK(SarRightHandSide)->Unit(benchmark::kMicrosecond);
 

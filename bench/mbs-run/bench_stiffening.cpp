@@ -18,6 +18,7 @@
 #include "common/input.h"
 #include "mbs-run/scene.h"
 #include "mbs-run/system.h"
+#include "rhs_benchmark.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {
@@ -77,15 +78,7 @@ void StiffeningRightHandSide(benchmark::State& state) {
       "  - {name: pin, type: spherical, bodies: [arm, tip], points: [P100, [0, 0, 0]]}\n"
       "simulation: {t_end: 1.0}\n";
   const fc::mbs::Model m = fc::mbs::parseScene(fc::InputNode::loadString(scene, "stiffening.yaml"));
-  fc::mbs::System sys(m);
-  Eigen::VectorXd y = sys.initialState(), yd;
-  sys.initializeJoints(y);
-  sys.project(0.0, y);
-  sys.initializeJoints(y);
-  for (auto _ : state) {
-    sys.derivative(0.0, y, yd);
-    benchmark::DoNotOptimize(yd.data());
-  }
+  fc::mbs::bench::timeRightHandSide(state, m);
   std::filesystem::remove(f.path);
 }
 BENCHMARK(StiffeningRightHandSide)->ArgsProduct({{4, 14, 56}, {0, 1}})->Unit(benchmark::kMicrosecond);

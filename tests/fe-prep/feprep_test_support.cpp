@@ -44,6 +44,52 @@ std::string dataBodyYaml(const std::string& name, const std::vector<std::pair<st
   return text;
 }
 
+std::string steelCantileverYaml(const std::string& modes) {
+  return R"(
+materials:
+  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
+body:
+  name: cantilever
+  beam: {length: 2.0, elements: 40, section: {shape: solid_circle, diameter: 0.02, material: steel}}
+  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}
+  reference: {clamp: [root]}
+  modes: )" + modes + "\n";
+}
+
+std::string raisedPinsPanelYaml(const std::string& t_coupling, const std::string& modes) {
+  return R"(
+materials:
+  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
+body:
+  name: panel
+  shell: {rectangle: {length: 1.0, width: 0.65}, material: cfrp_iso, thickness: 0.002, mesh: {size: 0.01}}
+  interfaces:
+    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
+    H2: {point: [-0.5, 0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
+    T: {point: [0.5, 0.0, 0.07], coupling: )" + t_coupling + R"(, nodes: {within: 0.1}}
+  reference: {clamp: [H1, H2]}
+  modes: )" + modes + "\n";
+}
+
+std::map<std::string, std::vector<double>> raisedPinsPanelCalculix() {
+  const std::string path = std::string(FLEXCOMP_DATA_DIR) + "/calculix/raised_pins_panel/ccx_results.txt";
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  std::map<std::string, std::vector<double>> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    std::string key, nx;
+    s >> key >> nx;
+    std::vector<double> v;
+    for (double x; s >> x;) v.push_back(x);
+    EXPECT_EQ(v.size(), 6u) << line;
+    out[key + " " + nx] = v;
+  }
+  return out;
+}
+
 std::string feprepExecutable() { return std::string(FLEXCOMP_BINARY_DIR) + "/fe-prep/fe-prep"; }
 
 std::string scratchDir(const std::string& test_name) {

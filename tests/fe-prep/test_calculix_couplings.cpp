@@ -10,9 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -21,42 +19,6 @@
 
 namespace fc::feprep::test {
 namespace {
-
-// "KEY NX v1 .. v6" lines of ccx_results.txt, keyed by "KEY NX".
-std::map<std::string, std::vector<double>> calculixResults() {
-  const std::string path = std::string(FLEXCOMP_DATA_DIR) + "/calculix/raised_pins_panel/ccx_results.txt";
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::map<std::string, std::vector<double>> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    std::string key, nx;
-    s >> key >> nx;
-    std::vector<double> v;
-    for (double x; s >> x;) v.push_back(x);
-    EXPECT_EQ(v.size(), 6u) << line;
-    out[key + " " + nx] = v;
-  }
-  return out;
-}
-
-std::string panel(const std::string& t_coupling) {
-  return R"(
-materials:
-  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
-body:
-  name: panel
-  shell: {rectangle: {length: 1.0, width: 0.65}, material: cfrp_iso, thickness: 0.002, mesh: {size: 0.01}}
-  interfaces:
-    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
-    H2: {point: [-0.5, 0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
-    T: {point: [0.5, 0.0, 0.07], coupling: )" + t_coupling + R"(, nodes: {within: 0.1}}
-  reference: {clamp: [H1, H2]}
-  modes: 6
-)";
-}
 
 // Tolerances. The two sides differ in element (DST triangles on gmsh's
 // unstructured h = 0.01 m mesh, 7.8k elements, lumped_moments mass; CalculiX
@@ -78,10 +40,10 @@ body:
 constexpr double kFreqTol = 0.005, kComplianceTol = 0.01, kTorsionTolDistributing = 0.02, kTorsionTolRigid = 0.03;
 
 TEST(CalculixCouplings, PanelOnDistributingPatchesMatchesCalculixInFrequencyAndStatically) {
-  const auto ccx = calculixResults();
+  const auto ccx = raisedPinsPanelCalculix();
   ASSERT_TRUE(ccx.count("frequencies 160") && ccx.count("compliance_distributing 160") && ccx.count("compliance_rigid 160"));
-  const BuildResult dist = runYaml(panel("distributing"));
-  const BuildResult rigid = runYaml(panel("rigid"));
+  const BuildResult dist = runYaml(raisedPinsPanelYaml("distributing", "6"));
+  const BuildResult rigid = runYaml(raisedPinsPanelYaml("rigid", "6"));
   ASSERT_EQ(dist.rigid_removed, 0);
   ASSERT_EQ(dist.body.modeCount(), 6);
   const auto& f = ccx.at("frequencies 160");

@@ -12,26 +12,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
+#include <vector>
 
 #include "feprep_test_support.h"
 
 namespace fc::feprep::test {
 namespace {
-
-std::string cantilever(const std::string& modes) {
-  return R"(
-materials:
-  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
-body:
-  name: cantilever
-  beam: {length: 2.0, elements: 40, section: {shape: solid_circle, diameter: 0.02, material: steel}}
-  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}
-  reference: {clamp: [root]}
-  modes: )" + modes + "\n";
-}
 
 // The compliance the file's modes carry at an interface: sum_j s_jk^2 / lambda_j.
 Eigen::VectorXd modalCompliance(const FlexBody& b, const std::string& name) {
@@ -40,9 +27,9 @@ Eigen::VectorXd modalCompliance(const FlexBody& b, const std::string& name) {
 }
 
 TEST(ResidualFlexibility, CantileverTipComplianceIsExactAndFrequenciesAreUpperBounds) {
-  const BuildResult plain = runYaml(cantilever("2"));
-  const BuildResult corrected = runYaml(cantilever("{count: 2, static_correction: true}"));
-  const BuildResult full = runYaml(cantilever("24"));
+  const BuildResult plain = runYaml(steelCantileverYaml("2"));
+  const BuildResult corrected = runYaml(steelCantileverYaml("{count: 2, static_correction: true}"));
+  const BuildResult full = runYaml(steelCantileverYaml("24"));
   // The root is clamped (its unit loads, in held directions, are left out);
   // the tip's six unit loads add six vectors.
   EXPECT_EQ(corrected.body.reduction, "free + static correction: 2 modes + 6 unit loads - 0 in the span = 8 shapes");
@@ -101,9 +88,9 @@ TEST(ResidualFlexibility, KeyErrors) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
   };
-  fails(cantilever("{count: 2, static_correction: [tpi]}"), "did you mean 'tip'");
-  fails(cantilever("{static_correction: true}"), "either count: N or static_error: E");
-  std::string free = cantilever("{count: 2, static_correction: true}");
+  fails(steelCantileverYaml("{count: 2, static_correction: [tpi]}"), "did you mean 'tip'");
+  fails(steelCantileverYaml("{static_correction: true}"), "either count: N or static_error: E");
+  std::string free = steelCantileverYaml("{count: 2, static_correction: true}");
   free.replace(free.find("reference: {clamp: [root]}"), 26, "reference: free");
   fails(free, "static_correction needs a reference that holds the body");
 }
@@ -112,28 +99,11 @@ TEST(ResidualFlexibility, KeyErrors) {
 // panel hung at two raised distributing hinge points (the panel of
 // test_calculix_couplings.cpp, the same tolerances and their reasons).
 TEST(ResidualFlexibility, RaisedPinsPanelReachesCalculixComplianceWithTwoModes) {
-  std::ifstream in(std::string(FLEXCOMP_DATA_DIR) + "/calculix/raised_pins_panel/ccx_results.txt");
-  ASSERT_TRUE(in.good());
-  std::vector<double> ccx;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("compliance_distributing 160", 0) != 0) continue;
-    std::istringstream s(line.substr(27));
-    for (double x; s >> x;) ccx.push_back(x);
-  }
+  const auto all = raisedPinsPanelCalculix();
+  ASSERT_EQ(all.count("compliance_distributing 160"), 1u);
+  const std::vector<double>& ccx = all.at("compliance_distributing 160");
   ASSERT_EQ(ccx.size(), 6u);
-  const BuildResult r = runYaml(R"(
-materials:
-  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
-body:
-  name: panel
-  shell: {rectangle: {length: 1.0, width: 0.65}, material: cfrp_iso, thickness: 0.002, mesh: {size: 0.01}}
-  interfaces:
-    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
-    H2: {point: [-0.5, 0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
-    T: {point: [0.5, 0.0, 0.07], coupling: distributing, nodes: {within: 0.1}}
-  reference: {clamp: [H1, H2]}
-  modes: {count: 2, static_correction: [T]}
-)");
+  const BuildResult r = runYaml(raisedPinsPanelYaml("distributing", "{count: 2, static_correction: [T]}"));
   EXPECT_EQ(r.body.reduction, "free + static correction: 2 modes + 6 unit loads - 0 in the span = 8 shapes");
   const Eigen::VectorXd c = modalCompliance(r.body, "T");
   // The two lowest shapes are the two modes unchanged (exact eigenvectors,

@@ -15,20 +15,8 @@
 namespace fc::feprep::test {
 namespace {
 
-std::string cantilever(const std::string& modes) {
-  return R"(
-materials:
-  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}
-body:
-  name: cantilever
-  beam: {length: 2.0, elements: 40, section: {shape: solid_circle, diameter: 0.02, material: steel}}
-  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}
-  reference: {clamp: [root]}
-  modes: )" + modes + "\n";
-}
-
 TEST(StaticError, CantileverTipComplianceParticipationAndChosenCount) {
-  const BuildResult r = runYaml(cantilever("6"));
+  const BuildResult r = runYaml(steelCantileverYaml("6"));
   const FlexInterface& tip = r.body.interface("tip");
   ASSERT_EQ(tip.static_error.size(), 6);
   const double E = 210e9, nu = 0.3, d = 0.02, L = 2.0, A = M_PI * d * d / 4, I = M_PI * std::pow(d, 4) / 64;
@@ -54,7 +42,7 @@ TEST(StaticError, CantileverTipComplianceParticipationAndChosenCount) {
   // after 2 pairs is 1 - 0.97070 - 0.02474 = 0.0046); the axial tip load needs
   // the axial modes too (the first carries 8/pi^2 = 81 %), so the count is the
   // smallest that meets 0.4 % in x, y and z, and one mode fewer misses it.
-  const BuildResult chosen = runYaml(cantilever("{static_error: 0.004}"));
+  const BuildResult chosen = runYaml(steelCantileverYaml("{static_error: 0.004}"));
   const FlexInterface& t2 = chosen.body.interface("tip");
   const long n = chosen.body.modeCount();
   std::printf("[   info   ] static_error 0.004 chose %ld modes; their errors x y z %.2e %.2e %.2e\n", n, t2.static_error(0),

@@ -48,20 +48,30 @@ std::string rod(int elements, int modes) {
                                     {{"elements", std::to_string(elements)}, {"modes", std::to_string(modes)}});
 }
 
+// q as a YAML flow list, "[q0, q1, ...]" (std::to_string: 6 decimals).
+std::string flowList(const Eigen::VectorXd& q) {
+  std::string out = "[";
+  for (long j = 0; j < q.size(); ++j) out += (j ? ", " : "") + std::to_string(q(j));
+  return out + "]";
+}
+
+// The scenes' first lines: the fixed ground and the rod (its file, modes and
+// geometric stiffening as given) placed with its root at the origin; callers
+// append the rod's further keys (4-space indent) and the rest of the scene.
+std::string groundAndRod(const std::string& file, int modes, bool stiffening) {
+  return "bodies:\n"
+         "  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n"
+         "  - name: rod\n"
+         "    flexible: {file: " + file + ", modes: " + std::to_string(modes) +
+         (stiffening ? ", geometric_stiffening: true" : "") + "}\n"
+         "    position: [1.0, 0, 0]\n";
+}
+
 // A driven hub (revolute about z at the rod's root, constant rate Omega) and the rod.
 std::string spinningScene(const std::string& file, int modes, double Omega, const Eigen::VectorXd& q0,
                           bool stiffening, double t_end, const std::string& integrator = "dopri5") {
-  std::string q = "[";
-  for (long j = 0; j < q0.size(); ++j) q += (j ? ", " : "") + std::to_string(q0(j));
-  q += "]";
   char text[2000];
-  std::snprintf(text, sizeof text, R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rod
-    flexible: {file: %s, modes: %d%s}
-    position: [1.0, 0, 0]
-    velocity: [0, %.17g, 0]
+  std::snprintf(text, sizeof text, R"(    velocity: [0, %.17g, 0]
     angular_velocity: [0, 0, %.17g]
     modal_coordinates: %s
 joints:
@@ -69,9 +79,8 @@ joints:
      drive: {angle0: 0.0, speed: %.17g}}
 simulation: {t_end: %g, output_step: 0.0005, rtol: 1.0e-9, integrator: %s}
 )",
-                file.c_str(), modes, stiffening ? ", geometric_stiffening: true" : "", Omega, Omega, q.c_str(), Omega,
-                t_end, integrator.c_str());
-  return text;
+                Omega, Omega, flowList(q0).c_str(), Omega, t_end, integrator.c_str());
+  return groundAndRod(file, modes, stiffening) + text;
 }
 
 struct SpinFrequencies {
@@ -149,19 +158,10 @@ TEST(GeometricStiffening, TipMassPullsTheSpinningRodThroughItsJoint) {
     if (std::abs(u.z()) > 10 * std::abs(u.y())) q0 = 1e-3 * es.eigenvectors().col(j) / u.z();
   }
   ASSERT_EQ(q0.size(), kModes);
-  std::string q = "[";
-  for (long j = 0; j < q0.size(); ++j) q += (j ? ", " : "") + std::to_string(q0(j));
-  q += "]";
   const double period = 2 * M_PI / w0;
   const Eigen::Vector3d u0 = Psi * q0;  // the mass starts on the displaced tip
   char text[2000];
-  std::snprintf(text, sizeof text, R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rod
-    flexible: {file: %s, modes: %d, geometric_stiffening: true}
-    position: [1.0, 0, 0]
-    velocity: [0, %.17g, 0]
+  std::snprintf(text, sizeof text, R"(    velocity: [0, %.17g, 0]
     angular_velocity: [0, 0, %.17g]
     modal_coordinates: %s
   - name: tip_mass
@@ -174,9 +174,8 @@ joints:
   - {name: pin, type: spherical, bodies: [rod, tip_mass], points: [tip, [0, 0, 0]]}
 simulation: {t_end: %g, output_step: 0.0005, rtol: 1.0e-9, integrator: dopri5}
 )",
-                file.c_str(), kModes, Om, Om, q.c_str(), M, 2.0 + u0.x(), u0.y(), u0.z(), (2.0 + u0.x()) * Om, Om,
-                8 * period);
-  const Results r = simulate(sceneFromText(text), {true});
+                Om, Om, flowList(q0).c_str(), M, 2.0 + u0.x(), u0.y(), u0.z(), (2.0 + u0.x()) * Om, Om, 8 * period);
+  const Results r = simulate(sceneFromText(groundAndRod(file, kModes, true) + text), {true});
   ASSERT_EQ(r.status, "completed");
   std::vector<double> z;
   for (const auto& w : r.modal[1]) z.push_back((Psi * w).z());
@@ -220,9 +219,6 @@ TEST(GeometricStiffening, ForceElementsAtTheTipStiffenTheRod) {
     const Eigen::VectorXd v = es.eigenvectors().col(0);
     const Eigen::Vector3d u = Psi * v;
     const Eigen::VectorXd q0 = 1e-3 * v / u.norm();
-    std::string q = "[";
-    for (long j = 0; j < q0.size(); ++j) q += (j ? ", " : "") + std::to_string(q0(j));
-    q += "]";
     const double D = 1.0e5, k = 1.0;
     char force[400];
     if (spring)
@@ -233,20 +229,14 @@ TEST(GeometricStiffening, ForceElementsAtTheTipStiffenTheRod) {
       std::snprintf(force, sizeof force, "  - {type: force, body: rod, point: tip, force: [%.17g, 0, 0]}\n", P);
     const double period = 2 * M_PI / std::sqrt(es.eigenvalues()(0));
     char text[2000];
-    std::snprintf(text, sizeof text, R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rod
-    flexible: {file: %s, modes: %d, geometric_stiffening: true}
-    position: [1.0, 0, 0]
-    modal_coordinates: %s
+    std::snprintf(text, sizeof text, R"(    modal_coordinates: %s
 joints:
   - {name: clamp, type: fixed, bodies: [ground, rod], points: [[0, 0, 0], root]}
 forces:
 %ssimulation: {t_end: %g, output_step: 0.0002, rtol: 1.0e-9}
 )",
-                  file.c_str(), kModes, q.c_str(), force, 6 * period);
-    const Results r = simulate(sceneFromText(text), {true});
+                  flowList(q0).c_str(), force, 6 * period);
+    const Results r = simulate(sceneFromText(groundAndRod(file, kModes, true) + text), {true});
     ASSERT_EQ(r.status, "completed");
     const Eigen::Vector3d dir = u.normalized();
     std::vector<double> s;
@@ -364,24 +354,16 @@ TEST(GeometricStiffening, HangingRodStiffenedByGravity) {
     const Eigen::VectorXd v = es.eigenvectors().col(0);
     const Eigen::Vector3d u = tip.shapes.leftCols(3).transpose() * v;
     const Eigen::VectorXd q0 = 1e-3 * v / u.norm();
-    std::string q = "[";
-    for (long j = 0; j < q0.size(); ++j) q += (j ? ", " : "") + std::to_string(q0(j));
     char text[1200];
-    std::snprintf(text, sizeof text, R"(
-bodies:
-  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
-  - name: rod
-    flexible: {file: %s, modes: 8, geometric_stiffening: true}
-    position: [1.0, 0, 0]
-    modal_coordinates: %s]
+    std::snprintf(text, sizeof text, R"(    modal_coordinates: %s
 joints:
   - {name: clamp, type: fixed, bodies: [ground, rod], points: [[0, 0, 0], root]}
 forces:
   - {type: gravity, g: [%g, 0, 0]}
 simulation: {t_end: 1.7, output_step: 0.0005, rtol: 1.0e-9}
 )",
-                  file.c_str(), q.c_str(), sign * 9.81);
-    const Results r = simulate(sceneFromText(text), {true});
+                  flowList(q0).c_str(), sign * 9.81);
+    const Results r = simulate(sceneFromText(groundAndRod(file, 8, true) + text), {true});
     ASSERT_EQ(r.status, "completed");
     // The mode's tip direction (the round rod's pair is degenerate: any direction).
     const Eigen::Vector3d dir = u.normalized();
