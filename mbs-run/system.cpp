@@ -27,14 +27,13 @@ System::System(const Model& model) : model_(model) {
   // Force elements with a point at a stiffened body's interface (only these are
   // looked at per evaluation: nothing is computed when stiffening is off).
   stiffened_force_.assign(model.forces.size(), 0);
-  auto stiffened = [&](int body, const std::string& name) {
-    if (body < 0 || name.empty()) return false;
-    const Body& b = model.bodies[static_cast<std::size_t>(body)];
-    return !b.fixed && b.modes > 0 && b.flex->stiffening && b.flex->stiffening->interfaces.count(name) > 0;
-  };
   for (std::size_t f = 0; f < model.forces.size(); ++f)
-    stiffened_force_[f] = stiffened(model.forces[f].body_i, model.forces[f].interface_i) ||
-                          stiffened(model.forces[f].body_j, model.forces[f].interface_j);
+    stiffened_force_[f] = stiffenedInterface(model.forces[f].body_i, model.forces[f].interface_i) ||
+                          stiffenedInterface(model.forces[f].body_j, model.forces[f].interface_j);
+  joint_stiffening_.resize(model.joints.size());
+  for (std::size_t j = 0; j < model.joints.size(); ++j)
+    joint_stiffening_[j] = {stiffenedInterface(model.joints[j].body_i, model.joints[j].interface_i),
+                            stiffenedInterface(model.joints[j].body_j, model.joints[j].interface_j)};
   solver_.setMethod(model.settings.linear_solver);
   // A modal mass block diagonal to rounding (fe-prep normalises the modes
   // with the body's own lumped mass, so it is the identity to ~1e-15) makes
@@ -236,6 +235,14 @@ void System::appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) cons
     if (force_on_[f]) addForceElement(model_, model_.forces[f], P, joints_, ForceQuantity::ForcesAndPowers, sums);
 }
 
+const std::array<Eigen::MatrixXd, 6>* System::stiffenedInterface(int body, const std::string& name) const {
+  if (body < 0 || name.empty()) return nullptr;
+  const Body& b = model_.bodies[static_cast<std::size_t>(body)];
+  if (b.fixed || b.modes == 0 || !b.flex->stiffening) return nullptr;
+  const auto it = b.flex->stiffening->interfaces.find(name);
+  return it == b.flex->stiffening->interfaces.end() ? nullptr : &it->second;
+}
+
 void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   ++stats_.evaluations;
   const int nq = model_.nq, nv = model_.nv;
@@ -268,13 +275,6 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
       acceleration_stiffening = acceleration_stiffening || b.flex->stiffening->acceleration_cases;
     }
   }
-  // Interface cases of a joint's point on a stiffened body; null if none.
-  auto interfaceCases = [&](int body, const std::string& name) -> const std::array<Eigen::MatrixXd, 6>* {
-    const Body& b = model_.bodies[static_cast<std::size_t>(body)];
-    if (name.empty() || b.fixed || b.modes == 0 || !b.flex->stiffening) return nullptr;
-    const auto it = b.flex->stiffening->interfaces.find(name);
-    return it == b.flex->stiffening->interfaces.end() ? nullptr : &it->second;
-  };
   // Force elements acting at an interface of a stiffened body (springs,
   // dampers, constant forces): their force there, body axes, weights the
   // interface's unit-force cases. It depends on the state only, so it goes
@@ -283,7 +283,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   for (std::size_t f = 0; f < model_.forces.size(); ++f)
     if (force_on_[f] && stiffened_force_[f]) interfaceForces(model_, model_.forces[f], P_, interface_forces_);
   for (const InterfaceForce& l : interface_forces_) {
-    const std::array<Eigen::MatrixXd, 6>* K = interfaceCases(l.body, *l.interface);
+    const std::array<Eigen::MatrixXd, 6>* K = stiffenedInterface(l.body, *l.interface);
     if (!K) continue;
     const Body& b = model_.bodies[static_cast<std::size_t>(l.body)];
     const Vector3d F = P_[l.body].A.transpose() * l.force;
@@ -292,11 +292,8 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     stiffening_power -= P_[l.body].modal_rate.dot(f);
   }
   bool interface_stiffening = false;
-  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
-    const Joint& jt = model_.joints[j];
-    if (joints_[j].enabled && (interfaceCases(jt.body_i, jt.interface_i) || interfaceCases(jt.body_j, jt.interface_j)))
-      interface_stiffening = true;
-  }
+  for (std::size_t j = 0; j < model_.joints.size(); ++j)
+    if (joints_[j].enabled && (joint_stiffening_[j][0] || joint_stiffening_[j][1])) interface_stiffening = true;
   const Settings& s = model_.settings;
   const VectorXd phidot = Phi_v_ * v + phit_;
   const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
@@ -328,7 +325,7 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
       if (!joints_[j].enabled) continue;
       for (int side = 0; side < 2; ++side) {
         const int k = side ? jt.body_j : jt.body_i;
-        const std::array<Eigen::MatrixXd, 6>* K = interfaceCases(k, side ? jt.interface_j : jt.interface_i);
+        const std::array<Eigen::MatrixXd, 6>* K = joint_stiffening_[j][static_cast<std::size_t>(side)];
         if (!K) continue;
         const ConstraintRows& rows = joint_rows_[j];
         const VectorXd Qj = -((side ? rows.Jj : rows.Ji).transpose() * r.lambda.segment(row_of_joint_[j], rows.size()));

@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -120,12 +121,17 @@ class System {
   void appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) const;
   void factorize();
   double penalty() const;
+  // The unit-load cases of interface `name` of a stiffened flexible body
+  // (flexible/geometric_stiffening.h), or null when that point does not stiffen.
+  const std::array<Eigen::MatrixXd, 6>* stiffenedInterface(int body, const std::string& name) const;
 
   const Model& model_;
   std::vector<JointRuntime> joints_;
   std::vector<char> force_on_;
   std::vector<char> stiffened_force_;              // acts at a stiffened body's interface
   std::vector<InterfaceForce> interface_forces_;   // scratch of derivative()
+  // Per joint, its two sides' stiffenedInterface (constant: resolved once).
+  std::vector<std::array<const std::array<Eigen::MatrixXd, 6>*, 2>> joint_stiffening_;
   std::vector<int> row_of_joint_;
   // Workspace.
   std::vector<BodyPose> P_;
