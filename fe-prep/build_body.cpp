@@ -589,9 +589,12 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       const bool held = std::any_of(spec.reference.begin(), spec.reference.end(),
                                     [&](const auto& r) { return r.set == mesh_interfaces[k].name; });
       if (!held)
+        // The unit-load responses of the static check are these cases' static
+        // solutions (the same loads, interfaceLoads): reused, not solved again.
         body.interfaces[k].geometric_stiffness =
-            interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh), model,
-                                        body.shapes);
+            static_check ? responseGeometricStiffness(mesh, u.middleCols(6 * static_cast<long>(k), 6), model, body.shapes)
+                         : interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh),
+                                                       model, body.shapes);
     }
   }
   for (std::size_t k = 0; k < body.interfaces.size(); ++k) {

@@ -127,9 +127,13 @@ std::vector<Eigen::MatrixXd> projectShellGeometricStiffness(const Mesh& mesh, co
 std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                         const Eigen::MatrixXd& shapes) {
-  const Eigen::MatrixXd u = solveStatic(comm, K, map, loads);
+  return responseGeometricStiffness(mesh, solveStatic(comm, K, map, loads), model, shapes);
+}
+
+std::vector<Eigen::MatrixXd> responseGeometricStiffness(const Mesh& mesh, const Eigen::MatrixXd& u,
+                                                        const StressStiffnessModel& model, const Eigen::MatrixXd& shapes) {
   const long nm = shapes.cols();
-  std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(loads.cols()), Eigen::MatrixXd::Zero(nm, nm));
+  std::vector<Eigen::MatrixXd> out(static_cast<std::size_t>(u.cols()), Eigen::MatrixXd::Zero(nm, nm));
   auto add = [&](const std::vector<Eigen::MatrixXd>& part) {
     for (std::size_t c = 0; c < out.size(); ++c) out[c] += part[c];
   };

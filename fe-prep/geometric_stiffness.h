@@ -86,6 +86,12 @@ std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mes
                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                         const Eigen::MatrixXd& shapes);
 
+// The same from static responses already solved (u: full nodal displacements,
+// 6 n x n_cases, e.g. the interface unit-load responses fe-prep solves for the
+// static truncation error): the stress state and the projection only.
+std::vector<Eigen::MatrixXd> responseGeometricStiffness(const Mesh& mesh, const Eigen::MatrixXd& u,
+                                                        const StressStiffnessModel& model, const Eigen::MatrixXd& shapes);
+
 // The inertial cases: unit inertial loads on the lumped masses (6 n).
 std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
                                                      const Eigen::VectorXd& lumped, const StressStiffnessModel& model,
