@@ -277,6 +277,7 @@ BodySpec parseBodySpec(const InputNode& root) {
       spec.modes = m["count"].asInt();
       if (spec.modes < 1) m["count"].fail("expected a positive number of modes");
     } else {
+      spec.modes_node = m;
       spec.static_error = m["static_error"].asPositive();
       if (spec.static_error >= 1) m["static_error"].fail("expected a share below 1 (e.g. 0.01 for 1 %)");
     }
@@ -321,13 +322,10 @@ BodySpec parseBodySpec(const InputNode& root) {
   else if (reduction != "free") b["reduction"].fail("unknown reduction '" + reduction + "', expected free or craig_bampton");
   if (spec.craig_bampton && spec.static_error > 0)
     b["modes"].fail("static_error chooses free (constrained) modes; a craig_bampton basis is statically complete at its boundary already");
-  if (spec.static_error > 0 && spec.reference.empty())
-    b["modes"].fail("static_error needs a reference that holds the body (reference: {clamp: [...]}): a free body has no static deflection");
+  if (spec.static_error > 0 && spec.interfaces.empty())
+    b["modes"].fail("static_error needs interfaces: the unit loads act there");
   if (spec.static_correction && spec.craig_bampton)
     spec.static_correction_node.fail("static_correction augments free (constrained) modes; a craig_bampton basis is statically complete at its boundary already");
-  if (spec.static_correction && spec.reference.empty())
-    spec.static_correction_node.fail("static_correction needs a reference that holds the body (reference: {clamp: [...]}): "
-                                     "the attachment modes are static responses of the held body");
   if (spec.static_correction && spec.interfaces.empty())
     spec.static_correction_node.fail("static_correction needs interfaces: the unit loads act there");
   if (spec.craig_bampton && spec.reference.empty())

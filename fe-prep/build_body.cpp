@@ -355,23 +355,24 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
 
   // --- eigen-solve
   sw.start();
-  // Static deflection of every interface under unit loads, where the reference
-  // holds the body (static_response.h): the yardstick of the modes' truncation.
-  const bool static_check = !spec.craig_bampton && rigid.cols() == 0 && !mesh_interfaces.empty();
+  // Static deflection of every interface under unit loads (static_response.h):
+  // the yardstick of the modes' truncation. Where the reference holds the body,
+  // always; where rigid motions are left free, with inertia relief (the
+  // deflection relative to the rigid motion, the sum over every elastic mode)
+  // and only when a static_error or static_correction asks for it.
+  const bool inertia_relief = rigid.cols() > 0 && (spec.static_error > 0 || spec.static_correction);
+  const bool static_check = !spec.craig_bampton && !mesh_interfaces.empty() && (rigid.cols() == 0 || inertia_relief);
   std::vector<Eigen::VectorXd> compliance;
-  Eigen::MatrixXd loads, u;  // unit loads at every interface and the held body's static responses (full DOF)
+  Eigen::MatrixXd loads, u;  // unit loads at every interface and the body's static responses (full DOF)
   if (static_check) {
     loads.resize(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
       loads.middleCols(6 * static_cast<long>(k), 6) = interfaceLoads(mesh_interfaces[k], mesh);
-    u = solveStatic(comm, sys.K, map, loads);
+    u = inertia_relief ? solveInertiaRelief(comm, sys.K, sys.M, map, rigid, loads) : solveStatic(comm, sys.K, map, loads);
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
       compliance.push_back(referencePointShapes(mesh_interfaces[k], mesh, u.middleCols(6 * static_cast<long>(k), 6)).diagonal());
   } else if (spec.static_error > 0) {
-    spec.reference.front().node.fail("modes: {static_error: ...} needs interfaces and a reference that holds every rigid motion of the body");
-  } else if (spec.static_correction) {
-    spec.static_correction_node.fail("static_correction needs a reference that holds every rigid motion of the body "
-                                     "(clamp an interface or pin three points)");
+    spec.modes_node.fail("modes: {static_error: ...} needs interfaces: the unit loads act there");
   }
   Eigen::Vector2d compliance_scale = Eigen::Vector2d::Zero();
   for (const auto& c : compliance)
@@ -560,7 +561,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       body.shapes.col(j) = x;
     }
     res.attachment_modes = m - ab.in_span - ab.dependent - ab.massless;
-    body.reduction = "free + static correction: " + std::to_string(nm) + " modes + " + std::to_string(m) +
+    body.reduction = std::string("free + static correction") + (inertia_relief ? " with inertia relief" : "") + ": " +
+                     std::to_string(nm) + " modes + " + std::to_string(m) +
                      " unit loads - " + std::to_string(ab.in_span + ab.dependent) + " in the span" +
                      (ab.massless ? " - " + std::to_string(ab.massless) + " massless" : "") + " = " +
                      std::to_string(ab.eigenvalues.size()) + " shapes";

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fc::feprep {
 
@@ -19,18 +20,90 @@ Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
   return r;
 }
 
-Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces) {
+namespace {
+
+// K^-1 b for every column of the reduced right-hand sides (one factorisation).
+Eigen::MatrixXd solveReduced(MPI_Comm comm, Mat K, const Eigen::MatrixXd& rhs, const char* singular) {
   OwnedKsp ksp = choleskySolver(comm, K);
   OwnedVec b, x;
   check(MatCreateVecs(K, &x, &b), "MatCreateVecs");
-  Eigen::MatrixXd out(forces.rows(), forces.cols());
-  for (long j = 0; j < forces.cols(); ++j) {
-    setLocal(b, reduceForce(map, forces.col(j)));
+  Eigen::MatrixXd out(rhs.rows(), rhs.cols());
+  for (long j = 0; j < rhs.cols(); ++j) {
+    setLocal(b, rhs.col(j));
     check(KSPSolve(ksp, b, x), "KSPSolve");
     KSPConvergedReason why;
     check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-    if (why < 0) throw std::runtime_error("the stiffness with the reference conditions is singular (rigid motions left free)");
-    out.col(j) = map.expand(gatherAll(x));
+    if (why < 0) throw std::runtime_error(singular);
+    out.col(j) = gatherAll(x);
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces) {
+  Eigen::MatrixXd rhs(map.reduced, forces.cols());
+  for (long j = 0; j < forces.cols(); ++j) rhs.col(j) = reduceForce(map, forces.col(j));
+  const Eigen::MatrixXd x =
+      solveReduced(comm, K, rhs, "the stiffness with the reference conditions is singular (rigid motions left free)");
+  Eigen::MatrixXd out(forces.rows(), forces.cols());
+  for (long j = 0; j < forces.cols(); ++j) out.col(j) = map.expand(x.col(j));
+  return out;
+}
+
+Eigen::MatrixXd solveInertiaRelief(MPI_Comm comm, Mat K, Mat M, const DofMap& map, const Eigen::MatrixXd& rigid,
+                                   const Eigen::MatrixXd& forces) {
+  const long r = rigid.cols(), n = map.reduced;
+  Eigen::MatrixXd MR(n, r);
+  for (long i = 0; i < r; ++i) MR.col(i) = multiply(M, rigid.col(i));
+  const Eigen::LDLT<Eigen::MatrixXd> G(rigid.transpose() * MR);
+  // The support: r DOF whose rows of R are independent (the pivots of R^T's
+  // column-pivoted QR, columns scaled to unit length so translations and
+  // rotations weigh alike); holding them removes every rigid motion and
+  // nothing more, so it is statically determinate.
+  Eigen::MatrixXd Rn = rigid;
+  for (long i = 0; i < r; ++i) Rn.col(i).normalize();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rn.transpose());
+  if (qr.rank() < r) throw std::logic_error("inertia relief: the rigid modes are not independent");
+  std::vector<PetscInt> support;
+  for (long i = 0; i < r; ++i) support.push_back(static_cast<PetscInt>(qr.colsPermutation().indices()(i)));
+  OwnedMat Ks;
+  check(MatDuplicate(K, MAT_COPY_VALUES, &Ks), "MatDuplicate");
+  PetscInt lo = 0, hi = 0;
+  check(MatGetOwnershipRange(Ks, &lo, &hi), "MatGetOwnershipRange");
+  std::vector<PetscInt> local;
+  for (PetscInt i : support)
+    if (i >= lo && i < hi) local.push_back(i);
+  OwnedVec diag;
+  check(MatCreateVecs(K, &diag, nullptr), "MatCreateVecs");
+  check(MatGetDiagonal(K, diag), "MatGetDiagonal");
+  PetscReal kmax = 0.0;
+  check(VecNorm(diag, NORM_INFINITY, &kmax), "VecNorm");
+  // The held DOF keep a diagonal of K's size (the factorisation's pivots stay alike).
+  check(MatZeroRowsColumns(Ks, static_cast<PetscInt>(local.size()), local.data(), kmax, nullptr, nullptr),
+        "MatZeroRowsColumns");
+  Eigen::MatrixXd rhs(n, forces.cols());
+  for (long j = 0; j < forces.cols(); ++j) {
+    const Eigen::VectorXd f = reduceForce(map, forces.col(j));
+    rhs.col(j) = f - MR * G.solve(rigid.transpose() * f);  // P f: balanced by the rigid-body inertia forces
+    for (PetscInt i : support) rhs(i, j) = 0.0;
+  }
+  const Eigen::MatrixXd us = solveReduced(comm, Ks, rhs,
+                                          "the stiffness on a statically determinate support is singular (the body "
+                                          "has a mechanism beyond its rigid motions)");
+  Eigen::MatrixXd out(forces.rows(), forces.cols());
+  for (long j = 0; j < forces.cols(); ++j) {
+    const Eigen::VectorXd u = us.col(j) - rigid * G.solve(MR.transpose() * us.col(j));  // P^T u_s
+    // The support's reactions vanish only if the load was equilibrated and K's
+    // null space is the rigid modes': K u must be P f on every DOF.
+    Eigen::VectorXd fe = reduceForce(map, forces.col(j));
+    fe -= MR * G.solve(rigid.transpose() * fe);
+    // (Rounding of the direct solve: relative to |K| |u|, not |f|.)
+    const double res = (multiply(K, u) - fe).norm();
+    if (!(res <= 1e-8 * (kmax * u.norm() + fe.norm())))
+      throw std::runtime_error("inertia relief: the support carries a reaction (relative residual " + std::to_string(res / fe.norm()) +
+                               "): the body has a mechanism beyond its rigid motions");
+    out.col(j) = map.expand(u);
   }
   return out;
 }

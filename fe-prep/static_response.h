@@ -31,6 +31,22 @@ Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f);
 // Throws std::runtime_error if K is singular (rigid motions left free).
 Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces);
 
+// Inertia relief (free or partly held bodies, r >= 1 rigid motions left by the
+// reference; MSC Nastran's inertia relief, Craig & Kurdila sec. 19.3 on
+// attachment modes of free structures): the loads are balanced by the inertia
+// forces of the rigid-body accelerations they cause, f_e = P f with
+// P = I - M R G^-1 R^T (R the admissible rigid modes, G = R^T M R), so that
+// R^T f_e = 0; K u_s = f_e is solved on a statically determinate support (r
+// reduced DOF where R's rows are best conditioned, a column-pivoted QR of R^T:
+// its reactions vanish for an equilibrated load, so K u_s = f_e holds
+// everywhere), and the rigid part is removed, u = P^T u_s = u_s - R G^-1 R^T M u_s
+// (the elastic flexibility G_e = P^T K_s^-1 P, M-orthogonal to the rigid modes,
+// equal to the sum over every elastic mode of phi phi^T / lambda). Returns the
+// full nodal displacements (6 n, m); every rank gets the whole result. Throws
+// std::runtime_error if K has a null space beyond R (a mechanism).
+Eigen::MatrixXd solveInertiaRelief(MPI_Comm comm, Mat K, Mat M, const DofMap& map, const Eigen::MatrixXd& rigid,
+                                   const Eigen::MatrixXd& forces);
+
 struct StaticTruncation {
   Eigen::MatrixXd participation;  // (n_modes, 6) p_jk; zero in held directions
   Eigen::VectorXd error;          // (6) e_k of all the modes given; zero in held directions
