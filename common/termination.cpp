@@ -1,6 +1,7 @@
 #include "common/termination.h"
 
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -19,6 +20,7 @@ constexpr int kSignalCount = sizeof(kSignals) / sizeof(kSignals[0]);
 // Everything the handler touches is static storage and lock-free atomics: a
 // signal handler may only call async-signal-safe functions (unlink, write, _exit).
 std::atomic<int> g_signal{0};
+std::atomic<long long> g_signal_ns{0};  // CLOCK_MONOTONIC time of the first signal
 std::atomic<int> g_policy{static_cast<int>(TerminationPolicy::ExitNow)};
 char g_prefix[128] = "flexcomp";
 
@@ -63,10 +65,27 @@ void writeAll(const char* s) {
   ::_exit(terminationExitCode(sig));
 }
 
+// clock_gettime is async-signal-safe (POSIX.1-2008).
+long long monotonicNs() {
+  struct timespec ts {};
+  ::clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<long long>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
+}
+
+// One stop request often arrives twice: timeout(1) sends its SIGTERM to the
+// child and then to the whole process group, a batch system may signal both the
+// process and its group. The same signal again within this window is that
+// duplicate, not a user asking a second time (the fuzzer found mbs-run under
+// `timeout` exiting at once without its results file).
+constexpr long long kDuplicateWindowNs = 1000000000LL;
+
 extern "C" void onTerminationSignal(int sig) {
   int expected = 0;
   const bool first = g_signal.compare_exchange_strong(expected, sig);
-  if (first && g_policy.load() == static_cast<int>(TerminationPolicy::Record)) return;
+  const bool record = g_policy.load() == static_cast<int>(TerminationPolicy::Record);
+  if (first) g_signal_ns.store(monotonicNs());
+  if (first && record) return;
+  if (!first && record && expected == sig && monotonicNs() - g_signal_ns.load() < kDuplicateWindowNs) return;
   removeTemporariesAndExit(sig, first ? "; no output written\n"
                                       : " (second termination signal); stopped at once\n");
 }
@@ -126,7 +145,10 @@ void throwIfTerminated() {
   if (const int s = g_signal.load()) throw Terminated(s);
 }
 
-void resetTerminationForTests() { g_signal.store(0); }
+void resetTerminationForTests() {
+  g_signal.store(0);
+  g_signal_ns.store(0);
+}
 void raiseTerminationForTests(int sig) { g_signal.store(sig); }
 
 const int* terminationSignals(int* count) {

@@ -16,7 +16,9 @@
 //           run loop polls terminationSignal() and finishes its results file
 //           with a status. A SECOND termination signal while the first is
 //           pending acts as ExitNow (removes temporaries, exits), so a loop that
-//           fails to poll can still be stopped.
+//           fails to poll can still be stopped; the same signal repeated within
+//           1 s is taken as one request delivered twice (timeout(1) signals the
+//           child and then its process group) and only recorded.
 //
 //   int  terminationSignal()      0, or the first signal received (async-safe read).
 //   void throwIfTerminated()      throws fc::Terminated when a signal is pending:

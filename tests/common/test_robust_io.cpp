@@ -104,6 +104,28 @@ TEST(Termination, RecordPolicyRecordsFirstSignalAndExitsOnSecond) {
   EXPECT_TRUE(listDir(d).empty());
 }
 
+// timeout(1) sends SIGTERM to the child and then to its process group: one
+// request, delivered twice. Under the Record policy the repeat within 1 s must
+// not turn into "stop at once" (mbs-run would lose its results file); the same
+// signal later, or a different one, still does.
+TEST(Termination, RecordPolicyTakesAnImmediateRepeatOfTheSameSignalAsOneRequest) {
+  const fs::path d = freshDir("record_twice");
+  const std::string out = (d / "res.h5").string();
+  const int status = inChild([&] {
+    fc::installTerminationHandlers("test", fc::TerminationPolicy::Record);
+    fc::AtomicH5Writer w(out);
+    ::raise(SIGTERM);
+    ::raise(SIGTERM);  // the group's copy
+    if (fc::terminationSignal() != SIGTERM) _exit(3);
+    ::usleep(1100000);  // past the 1 s window: a second request
+    ::raise(SIGTERM);
+    _exit(6);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << "6: the later SIGTERM was ignored; 3: none recorded";
+  EXPECT_TRUE(listDir(d).empty());
+}
+
 TEST(Termination, RegistrationIsReleasedAfterCommit) {
   const fs::path d = freshDir("release");
   const std::string out = (d / "kept.h5").string();

@@ -133,6 +133,28 @@ INSTANTIATE_TEST_SUITE_P(Batch, Signals,
                          ::testing::Values(SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGALRM, SIGXCPU, SIGPIPE),
                          [](const ::testing::TestParamInfo<int>& i) { return std::string(sigabbrev_np(i.param)); });
 
+// `timeout 10 mbs-run ...` delivers its SIGTERM twice (to the child, then to the
+// process group): found by the fuzzer, whose runs under timeout(1) ended
+// "stopped at once" without a results file. The pair is one request.
+TEST_F(RunDir, ATerminationSignalDeliveredTwiceStillLeavesAValidFile) {
+  const std::string out = path("out.h5");
+  const pid_t pid = start({kData + "pendulum_long.yaml", "-o", out, "-q"});
+  const auto t0 = std::chrono::steady_clock::now();
+  while (temporaries() == 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 20)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  const Exit e = wait(pid, 20.0);
+  EXPECT_EQ(e.signal, 0) << "killed by signal " << e.signal;
+  EXPECT_EQ(e.code, 128 + SIGTERM);
+  EXPECT_EQ(temporaries(), 0);
+  ASSERT_TRUE(fs::exists(out)) << "the second SIGTERM stopped it at once";
+  fc::H5File f(out, fc::H5File::Mode::Read);
+  EXPECT_EQ(f.stringAttribute("/", "status"), "interrupted by SIGTERM");
+  EXPECT_GE(f.readVector("/time").size(), 2);
+}
+
 // A full disk, simulated by a file-size limit (writes fail with EFBIG): the
 // error is reported, the previous results stay, and no temporary is left.
 TEST_F(RunDir, WriteErrorKeepsThePreviousFile) {
