@@ -231,6 +231,59 @@ TEST(ResidualFlexibility, RaisedPinsPanelReachesCalculixComplianceWithTwoModes) 
 namespace fc::feprep::test {
 namespace {
 
+// A partly held body: the rod pinned at its root (reference: {pin: [root]}),
+// free to turn about it (r = 3 rigid rotations). Inertia relief about the pin:
+// alpha = (F L + M) / I_p, I_p = m L^3/3 + rho I L, inertia load -m alpha x,
+// the pin's reaction real; the deflection M-orthogonal to the rotations about
+// the pin (int (m w x + rho I theta) = 0, w(0) = 0). Closed form (sympy, as the
+// free rod's): without shear and rotary inertia 2 L^3 / (105 EI) for the tip
+// force, 17 L / (35 EI) for the tip moment; torsion L / (3 GJ); axially the
+// pin holds the rod: L / EA, an ordinary static deflection.
+TEST(ResidualFlexibility, PinnedRodTurnsAboutItsPinWithInertiaRelief) {
+  const double E = 210e9, nu = 0.3, d = 0.02, L = 2.0, rho = 7850, A = M_PI * d * d / 4, I = M_PI * std::pow(d, 4) / 64;
+  const double G = E / (2 * (1 + nu)), J = 2 * I, kappa = 6 * (1 + nu) / (7 + 6 * nu);
+  const double m = rho * A, rI = rho * I, EI = E * I, kGA = kappa * G * A;
+  const double den = std::pow(L, 4) * m * m + 6 * L * L * m * rI + 9 * rI * rI;
+  const double force = L * (21 * EI * std::pow(L, 4) * m * m + 945 * EI * rI * rI + 2 * std::pow(L, 6) * kGA * m * m) /
+                       (105 * EI * kGA * den);
+  const double moment =
+      L * (42 * EI * L * L * m * m + 17 * std::pow(L, 4) * kGA * m * m + 84 * L * L * kGA * m * rI + 105 * kGA * rI * rI) /
+      (35 * EI * kGA * den);
+  const Eigen::Matrix<double, 6, 1> exact =
+      (Eigen::Matrix<double, 6, 1>() << L / (E * A), force, force, L / (3 * G * J), moment, moment).finished();
+  double worst[2] = {0, 0};
+  int level = 0;
+  for (int n : {40, 80}) {
+    std::string y = freeRodYaml("{count: 2, static_correction: [tip]}", n);
+    y.replace(y.find("reference: free"), 15, "reference: {pin: [root]}");
+    const BuildResult r = runYaml(y);
+    EXPECT_EQ(r.body.reduction,
+              "free + static correction with inertia relief: 2 modes + 6 unit loads - 0 in the span = 8 shapes");
+    EXPECT_EQ(r.rigid_removed, 3);
+    const Eigen::VectorXd c = modalCompliance(r.body, "tip");
+    for (int k = 0; k < 6; ++k) {
+      std::printf("[   info   ] pinned rod, %d elements, tip direction %d: closed form %.9e, 2 modes + correction %.9e "
+                  "(%+.2e), static_error %.1e\n", n, k, exact(k), c(k), c(k) / exact(k) - 1, r.body.interface("tip").static_error(k));
+      worst[level] = std::max(worst[level], std::abs(c(k) / exact(k) - 1));
+      EXPECT_LT(std::abs(r.body.interface("tip").static_error(k)), 1e-9) << k;
+    }
+    // The pin holds the root's translations (no deflection to miss there).
+    const Eigen::VectorXd root = r.body.interface("root").static_compliance;
+    EXPECT_LT(root.head<3>().cwiseAbs().maxCoeff(), 1e-12 * c(1));
+    ++level;
+  }
+  std::printf("[   info   ] pinned rod: largest deviation from the closed form %.2e (40 elements), %.2e (80)\n", worst[0], worst[1]);
+  // O(h^2) from the lumped masses, as for the free rod.
+  EXPECT_LT(worst[0], 5e-4);
+  EXPECT_GT(worst[0] / worst[1], 3.5);
+}
+
+}  // namespace
+}  // namespace fc::feprep::test
+
+namespace fc::feprep::test {
+namespace {
+
 // modes: {static_error: E, static_correction: ...}: E chooses the free modes
 // exactly as without the correction (the fewest leading modes that carry all
 // but E of every unit force's static deflection at every interface,
