@@ -163,7 +163,12 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
         r.triangles = spec.shell->triangles;
         r.size = spec.shell->size;
         r.max_triangles = spec.shell->max_triangles;
-        for (const auto& i : spec.interfaces) r.forced_points.emplace_back(i.position.x(), i.position.y());
+        for (const auto& i : spec.interfaces) {
+          r.forced_points.emplace_back(i.position.x(), i.position.y());
+          // Box patches on the mid-surface (z = 0) are meshed conforming: the same region at every size.
+          if (i.coupling != Coupling::Node && i.select == PatchSelect::Box && i.box_lo.z() <= 0.0 && i.box_hi.z() >= 0.0)
+            r.conforming_boxes.emplace_back(i.box_lo.x(), i.box_lo.y(), i.box_hi.x(), i.box_hi.y());
+        }
         mesh = meshRectangle(r);
       } else {
         std::vector<Eigen::Vector3d> pts;

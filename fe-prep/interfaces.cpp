@@ -23,6 +23,23 @@ Eigen::VectorXd tributaryWeights(const Mesh& mesh, const std::vector<long>& node
   return w;
 }
 
+Eigen::VectorXd patchAreaWeights(const Mesh& mesh, const std::vector<long>& nodes) {
+  std::vector<long> slot(static_cast<std::size_t>(mesh.nodeCount()), -1);
+  for (std::size_t i = 0; i < nodes.size(); ++i) slot[static_cast<std::size_t>(nodes[i])] = static_cast<long>(i);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(static_cast<long>(nodes.size()));
+  bool any = false;
+  for (const auto& t : mesh.triangles) {
+    if (slot[static_cast<std::size_t>(t[0])] < 0 || slot[static_cast<std::size_t>(t[1])] < 0 ||
+        slot[static_cast<std::size_t>(t[2])] < 0)
+      continue;
+    const Eigen::Vector3d a = mesh.nodes.row(t[0]), b = mesh.nodes.row(t[1]), c = mesh.nodes.row(t[2]);
+    const double A = 0.5 * (b - a).cross(c - a).norm();
+    for (long k : t) w(slot[static_cast<std::size_t>(k)]) += A / 3.0;
+    any = true;
+  }
+  return any ? w : tributaryWeights(mesh, nodes);
+}
+
 Eigen::MatrixXd distributingMap(const Mesh& mesh, const std::vector<long>& nodes, const Eigen::VectorXd& weights,
                                 const Eigen::Vector3d& P) {
   const long p = static_cast<long>(nodes.size());
@@ -105,7 +122,7 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& s, const E
     if (d < best) best = d, it.node = k;
   }
   if (s.coupling == Coupling::Distributing) {
-    it.weights = tributaryWeights(mesh, it.nodes);
+    it.weights = s.select == PatchSelect::Box ? patchAreaWeights(mesh, it.nodes) : tributaryWeights(mesh, it.nodes);
     it.W = distributingMap(mesh, it.nodes, it.weights, it.point);
   }
   return it;

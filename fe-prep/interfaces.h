@@ -9,7 +9,8 @@
 // The RBE3 fit: with d_i = X_i - P and G_i = [I, -skew(d_i)] (3 x 6),
 //   minimise sum_i w_i |u_i - G_i [u_P; theta_P]|^2
 //   => [u_P; theta_P] = A^-1 sum_i w_i G_i^T u_i,  A = sum_i w_i G_i^T G_i,
-// the weights w_i the nodes' tributary areas (shells) or lengths (beams). When
+// the weights w_i the nodes' tributary areas (shells) or lengths (beams), for box
+// patches the areas inside the box (patchAreaWeights). When
 // the translations alone cannot fix the rotation (a single node, collinear
 // nodes: A singular) the nodal rotations about the undetermined axes (only
 // those: never a shell's drilling rotation of an edge patch) join the fit with
@@ -42,6 +43,16 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& spec, cons
 // Tributary weight of each node: a third of every triangle's area and half of
 // every beam element's length touching it.
 Eigen::VectorXd tributaryWeights(const Mesh& mesh, const std::vector<long>& nodes);
+
+// Weights of a box patch: the integral of each node's linear shape function over
+// the patch's own triangles (all three nodes in the patch). Box patches on
+// rectangular panels are meshed conforming (meshRectangle), so this is the
+// integral over the box itself: the weights sum to its area and put their centre
+// at its centroid at every mesh, their second moments converge as h^2. The full
+// tributary areas would add a rim of outside triangles (area and centre O(h)
+// off, differently at each mesh). With no triangle inside (a box smaller than a
+// mesh file's elements) the full tributary areas.
+Eigen::VectorXd patchAreaWeights(const Mesh& mesh, const std::vector<long>& nodes);
 
 // The RBE3 map W (6, 6 p) above.
 Eigen::MatrixXd distributingMap(const Mesh& mesh, const std::vector<long>& nodes, const Eigen::VectorXd& weights,

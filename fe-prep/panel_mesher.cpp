@@ -111,9 +111,59 @@ void checkTriangleCount(double estimate, long limit, const std::string& how) {
   }
 }
 
+Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h);
+
 Mesh meshRectangleOnce(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
-                       const std::vector<Eigen::Vector2d>& interior, double h) {
-  return withGmsh("rectangular panel", [&] { return meshRectangleGmsh(r, edge_pts, interior, h); });
+                       const std::vector<Eigen::Vector2d>& interior, const std::vector<Eigen::Vector4d>& boxes,
+                       double h) {
+  return withGmsh("rectangular panel", [&] {
+    return boxes.empty() ? meshRectangleGmsh(r, edge_pts, interior, h) : meshRectangleConforming(r, boxes, h);
+  });
+}
+
+// Node sets of the rectangle's edges, by coordinate.
+void addEdgeSets(Mesh& mesh, double a, double b, double tol) {
+  for (long i = 0; i < mesh.nodeCount(); ++i) {
+    const double x = mesh.nodes(i, 0), y = mesh.nodes(i, 1);
+    if (std::abs(x + a) < tol) mesh.sets["edge_xmin"].push_back(i);
+    if (std::abs(x - a) < tol) mesh.sets["edge_xmax"].push_back(i);
+    if (std::abs(y + b) < tol) mesh.sets["edge_ymin"].push_back(i);
+    if (std::abs(y - b) < tol) mesh.sets["edge_ymax"].push_back(i);
+  }
+}
+
+// The rectangle fragmented by the (clipped) boxes and the forced points (OpenCASCADE
+// BooleanFragments: intersecting or touching boxes, points on box outlines and on the
+// rectangle's edges are all resolved by the kernel), every face meshed with size h.
+Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h) {
+  GmshSession session(r.quiet);
+  gmsh::model::add("panel");
+  const double a = r.length / 2, b = r.width / 2;
+  const double tol = 1e-9 * std::max(r.length, r.width);
+  const int panel = gmsh::model::occ::addRectangle(-a, -b, 0.0, r.length, r.width);
+  gmsh::vectorpair tools;
+  for (const auto& q : boxes) {
+    const double dx = q(2) - q(0), dy = q(3) - q(1);
+    if (dx > tol && dy > tol) {
+      tools.emplace_back(2, gmsh::model::occ::addRectangle(q(0), q(1), 0.0, dx, dy));
+    } else if (dx > tol || dy > tol) {
+      const int p0 = gmsh::model::occ::addPoint(q(0), q(1), 0.0), p1 = gmsh::model::occ::addPoint(q(2), q(3), 0.0);
+      tools.emplace_back(1, gmsh::model::occ::addLine(p0, p1));
+    } else {
+      tools.emplace_back(0, gmsh::model::occ::addPoint(q(0), q(1), 0.0));
+    }
+  }
+  for (const auto& p : r.forced_points) tools.emplace_back(0, gmsh::model::occ::addPoint(p.x(), p.y(), 0.0));
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> out_map;
+  gmsh::model::occ::fragment({{2, panel}}, tools, out, out_map);
+  gmsh::model::occ::synchronize();
+  gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay, as the plain rectangle
+  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+  gmsh::model::mesh::generate(2);
+  Mesh mesh = extractTriangles();
+  addEdgeSets(mesh, a, b, tol * 10);
+  return mesh;
 }
 
 Mesh meshRectangleGmsh(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
@@ -158,14 +208,7 @@ Mesh meshRectangleGmsh(const PanelMeshRequest& r, const std::vector<Eigen::Vecto
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
   gmsh::model::mesh::generate(2);
   Mesh mesh = extractTriangles();
-
-  for (long i = 0; i < mesh.nodeCount(); ++i) {
-    const double x = mesh.nodes(i, 0), y = mesh.nodes(i, 1);
-    if (std::abs(x + a) < tol * 10) mesh.sets["edge_xmin"].push_back(i);
-    if (std::abs(x - a) < tol * 10) mesh.sets["edge_xmax"].push_back(i);
-    if (std::abs(y + b) < tol * 10) mesh.sets["edge_ymin"].push_back(i);
-    if (std::abs(y - b) < tol * 10) mesh.sets["edge_ymax"].push_back(i);
-  }
+  addEdgeSets(mesh, a, b, tol * 10);
   return mesh;
 }
 
@@ -201,6 +244,12 @@ Mesh meshRectangle(const PanelMeshRequest& r) {
     for (const auto& q : list) dup = dup || (q - p).norm() < tol;
     if (!dup) list.push_back(p);
   }
+  // Boxes clipped to the rectangle; one that misses it selects nothing there (resolveInterface says so).
+  std::vector<Eigen::Vector4d> boxes;
+  for (const auto& q : r.conforming_boxes) {
+    const Eigen::Vector4d c(std::max(q(0), -a), std::max(q(1), -b), std::min(q(2), a), std::min(q(3), b));
+    if (c(2) >= c(0) && c(3) >= c(1)) boxes.push_back(c);
+  }
 
   const double area = r.length * r.width;
   if (r.size > 0)
@@ -210,14 +259,14 @@ Mesh meshRectangle(const PanelMeshRequest& r) {
     checkTriangleCount(static_cast<double>(r.triangles), r.max_triangles, "triangles: " + std::to_string(r.triangles));
   Mesh best;
   if (r.size > 0) {
-    best = meshRectangleOnce(r, edge_pts, interior, r.size);
+    best = meshRectangleOnce(r, edge_pts, interior, boxes, r.size);
   } else {
     if (r.triangles <= 0) throw std::invalid_argument("mesh needs a positive triangle count or size");
     double h = sizeForTriangleCount(r.length * r.width, r.triangles);
     long best_err = -1;
     // The count responds to h roughly as 1/h^2; a few secant-like steps land close.
     for (int it = 0; it < 8; ++it) {
-      Mesh m = meshRectangleOnce(r, edge_pts, interior, h);
+      Mesh m = meshRectangleOnce(r, edge_pts, interior, boxes, h);
       const long count = static_cast<long>(m.triangles.size());
       const long err = std::abs(count - r.triangles);
       if (best_err < 0 || err < best_err) {

@@ -20,6 +20,12 @@ struct PanelMeshRequest {
   double size = 0.0;
   // Points (x, y) that must be mesh nodes: the interfaces' projections on z = 0.
   std::vector<Eigen::Vector2d> forced_points;
+  // Regions [x0, y0, x1, y1] whose outlines must be mesh lines: the box patches of distributed
+  // interfaces (clipped to the rectangle). Each becomes a face of its own (gmsh OpenCASCADE
+  // fragments), so the triangles with all nodes in a box tile exactly that box at every element
+  // size: the patch, its area and its centre do not change with the mesh. A box thin in one
+  // direction becomes a line, in both a point.
+  std::vector<Eigen::Vector4d> conforming_boxes;
   bool quiet = true;
   // Refused above this (std::invalid_argument), before meshing: mesh.max_triangles.
   long max_triangles = kDefaultMaxTriangles;
@@ -29,7 +35,8 @@ struct PanelMeshRequest {
 // With a triangle target the element size is iterated (a few gmsh runs) until
 // the count is within 10 % of the target or stops improving. Node sets
 // edge_xmin, edge_xmax, edge_ymin, edge_ymax. Forced points must lie in the
-// rectangle (std::invalid_argument otherwise).
+// rectangle (std::invalid_argument otherwise). Without conforming boxes the geo
+// kernel meshes the plain rectangle (the meshes of earlier versions, unchanged).
 Mesh meshRectangle(const PanelMeshRequest& request);
 
 // The triangles of a .geo (or .msh) file; size > 0 caps the element size.

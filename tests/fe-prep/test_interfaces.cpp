@@ -5,11 +5,13 @@
 // panel converge under mesh refinement where single-node pins do not.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "fe-prep/interfaces.h"
+#include "fe-prep/panel_mesher.h"
 #include "fe-prep/reference_conditions.h"
 #include "feprep_test_support.h"
 
@@ -121,6 +123,107 @@ TEST(Interfaces, HeldDistributingInterfaceHoldsItsPoint) {
       const int cols = std::string(kind) == "pin" ? 3 : 6;
       EXPECT_LT(s.leftCols(cols).cwiseAbs().maxCoeff(), 1e-10 * r.body.shapes.cwiseAbs().maxCoeff()) << kind << name;
     }
+  }
+}
+
+TEST(Interfaces, BoxPatchesAreMeshedConformingAndWeightedByTheirArea) {
+  // Box patches on a rectangle (inside, cut by an edge, in a corner, two split
+  // by a 10 mm gap, one holding a forced point) are meshed conforming: no
+  // triangle has nodes both strictly inside and strictly outside a box, so the
+  // triangles with all nodes in a box tile it. patchAreaWeights then integrate
+  // the linear shape functions over the box: the weights' sum and first
+  // moments are the box's area and centroid exactly (closed form, at every
+  // mesh); their central second moments are those of the P1 interpolant of
+  // x^2, above the box's b^3 d / 12 by O(h^2).
+  const double a = 0.5, b = 0.325;
+  const std::vector<std::array<double, 4>> boxes{{0.0, 0.0, 0.2, 0.1},      {-0.6, 0.225, -0.4, 0.425},
+                                                 {0.4, 0.225, 0.6, 0.425},  {0.3, -0.3, 0.395, -0.2},
+                                                 {0.405, -0.3, 0.5, -0.2}};
+  std::vector<std::array<double, 2>> second_error;  // per mesh: largest relative excess of Ixx, Iyy over all boxes
+  for (double h : {0.05, 0.025, 0.0125}) {
+    PanelMeshRequest r;
+    r.length = 2 * a;
+    r.width = 2 * b;
+    r.size = h;
+    r.forced_points = {{0.1, 0.05}, {-0.5, 0.325}, {0.45, -0.25}};
+    for (const auto& q : boxes) r.conforming_boxes.emplace_back(q[0], q[1], q[2], q[3]);
+    const Mesh mesh = meshRectangle(r);
+    for (const auto& p : r.forced_points) {
+      double d = 1e300;
+      for (long k = 0; k < mesh.nodeCount(); ++k) d = std::min(d, (mesh.nodes.row(k).head<2>().transpose() - p).norm());
+      EXPECT_LT(d, 1e-12) << "forced point not a node, h " << h;
+    }
+    std::array<double, 2> worst{0.0, 0.0};
+    for (const auto& q : boxes) {
+      const double x0 = std::max(q[0], -a), y0 = std::max(q[1], -b), x1 = std::min(q[2], a), y1 = std::min(q[3], b);
+      const double tol = 1e-12;
+      auto side = [&](long k) {  // +1 strictly inside, -1 strictly outside, 0 on the outline
+        const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
+        if (x > x0 + tol && x < x1 - tol && y > y0 + tol && y < y1 - tol) return 1;
+        if (x < x0 - tol || x > x1 + tol || y < y0 - tol || y > y1 + tol) return -1;
+        return 0;
+      };
+      std::vector<long> nodes;
+      for (long k = 0; k < mesh.nodeCount(); ++k)
+        if (side(k) >= 0) nodes.push_back(k);
+      for (const auto& t : mesh.triangles) {
+        int in = 0, out = 0;
+        for (long k : t) in += side(k) > 0, out += side(k) < 0;
+        EXPECT_FALSE(in > 0 && out > 0) << "a triangle straddles box " << x0 << " " << y0 << ", h " << h;
+      }
+      const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+      const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+      double s = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const double wi = w(static_cast<long>(i)), x = mesh.nodes(nodes[i], 0), y = mesh.nodes(nodes[i], 1);
+        s += wi, sx += wi * x, sy += wi * y, sxx += wi * (x - cx) * (x - cx), syy += wi * (y - cy) * (y - cy);
+      }
+      // Sums of a few dozen areas: rounding only.
+      EXPECT_NEAR(s / area, 1.0, 1e-12) << h;
+      EXPECT_NEAR(sx / area, cx, 1e-12) << h;
+      EXPECT_NEAR(sy / area, cy, 1e-12) << h;
+      const double Ixx = area * (x1 - x0) * (x1 - x0) / 12, Iyy = area * (y1 - y0) * (y1 - y0) / 12;
+      // The interpolant of a convex function lies above it: never below (to rounding).
+      EXPECT_GT(sxx / Ixx - 1, -1e-12) << h;
+      EXPECT_GT(syy / Iyy - 1, -1e-12) << h;
+      worst = {std::max(worst[0], sxx / Ixx - 1), std::max(worst[1], syy / Iyy - 1)};
+    }
+    second_error.push_back(worst);
+  }
+  std::printf("[   info   ] box patches, excess of the weights' second moments, h = 0.05 / 0.025 / 0.0125 m: "
+              "Ixx %.3g %.3g %.3g, Iyy %.3g %.3g %.3g\n", second_error[0][0], second_error[1][0], second_error[2][0],
+              second_error[0][1], second_error[1][1], second_error[2][1]);
+  // O(h^2): 4x per halving on a uniform mesh; an unstructured one scatters, so at least 2.5x.
+  for (int d = 0; d < 2; ++d)
+    for (int k = 1; k < 3; ++k) EXPECT_LT(second_error[k][d], second_error[k - 1][d] / 2.5) << d << " " << k;
+}
+
+TEST(Interfaces, BoxPatchInterfaceIsTheFitOverItsFootprint) {
+  // The raised hinge pins of the test below on bracket footprints (box patches
+  // 0.1 x 0.2 m cut by the short edge) through the whole fe-prep path: the
+  // patch's weights cover the footprint exactly and the file's interface
+  // shapes are W q with W from patchAreaWeights.
+  const BuildResult r = runYaml(panelYaml(
+      "    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {box: [[-0.6, -0.3, -0.1], [-0.4, -0.1, 0.1]]}}\n"
+      "    H2: {point: [-0.5, 0.2, 0.07], coupling: distributing, nodes: {box: [[-0.6, 0.1, -0.1], [-0.4, 0.3, 0.1]]}}\n",
+      "{pin: [H1, H2]}", 0.04, 2));
+  Mesh mesh;
+  mesh.nodes = r.body.nodes;
+  const auto& tri = r.body.elements.at("triangles");
+  for (long e = 0; e < tri.rows(); ++e) mesh.triangles.push_back({tri(e, 0), tri(e, 1), tri(e, 2)});
+  std::vector<long> nodes;
+  for (long k = 0; k < mesh.nodeCount(); ++k)
+    if (mesh.nodes(k, 0) <= -0.4 + 1e-12 && mesh.nodes(k, 1) >= 0.1 - 1e-12 && mesh.nodes(k, 1) <= 0.3 + 1e-12)
+      nodes.push_back(k);
+  const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+  EXPECT_NEAR(w.sum(), 0.1 * 0.2, 1e-14);  // the footprint's area (the panel's edge cuts the box)
+  const Eigen::MatrixXd W = distributingMap(mesh, nodes, w, Eigen::Vector3d(-0.5, 0.2, 0.07));
+  for (int j = 0; j < 2; ++j) {
+    Eigen::VectorXd qp(6 * static_cast<long>(nodes.size()));
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      qp.segment<6>(6 * static_cast<long>(i)) = r.body.shapes.block<6, 1>(6 * nodes[i], j);
+    const Eigen::VectorXd s = r.body.interface("H2").shapes.row(j).transpose();
+    EXPECT_LT((W * qp - s).norm(), 1e-12 * r.body.shapes.col(j).norm()) << j;
   }
 }
 
