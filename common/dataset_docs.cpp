@@ -66,7 +66,7 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/interfaces/*/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
        "the interface point's own displacement and rotation per mode (n_modes, 6)"},
       {"flexbody", "/interfaces/*/static_compliance", "m/N, rad/(N m)",
-       "exact static deflection of the point under a unit force x y z / moment x y z (6; reference-held bodies)"},
+       "exact static deflection of the point under a unit force x y z / moment x y z (6; reference-held bodies, or with inertia relief when static_error or static_correction asks)"},
       {"flexbody", "/interfaces/*/static_participation", "1",
        "each mode's share of that static deflection (n_modes, 6)"},
       {"flexbody", "/interfaces/*/static_error", "1",
