@@ -122,5 +122,6 @@ TEST(FreeStaticCorrection, FreeRodUnderAStepForceSettlesAtTheInertiaReliefDeflec
   EXPECT_LT(std::abs(peak_error[3]), std::abs(peak_error[2]) / 3);
 }
 
+
 }  // namespace
 }  // namespace fc::feprep::test
