@@ -65,6 +65,7 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
   std::printf("  model: %zu bodies (%d fixed, %d flexible with %d modes in all), %d position / %d velocity "
               "coordinates, %zu joints with %d constraint equations at t = 0\n",
               m.bodies.size(), n_fixed, n_flexible, n_modes, m.nq, m.nv, m.joints.size(), n_rows);
+  std::printf("  formulation: %s\n", r.formulation.c_str());
   std::printf("  integrator %s, rtol %.3g: %ld steps, %ld rejected, %ld evaluations, %ld projections, "
               "AL iterations <= %d\n",
               r.integrator.c_str(), m.settings.rtol, r.steps, r.rejected_steps, r.evaluations, r.projections,

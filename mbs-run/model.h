@@ -152,6 +152,13 @@ struct Event {
 
 enum class IntegratorKind { Auto, DormandPrince, TrBdf2, Imex };
 
+// `formulation:` auto runs an open tree of rigid bodies on revolute and
+// prismatic joints in joint coordinates (kinematic_tree.h) and everything
+// else constrained; tree asks for joint coordinates (a warning and the
+// constrained path when the scene has what they do not support);
+// constrained forces the Cartesian coordinates with constraints.
+enum class Formulation { Auto, Tree, Constrained };
+
 struct Settings {
   double t_end = 1.0;
   double output_step = 0.01;
@@ -183,6 +190,7 @@ struct Settings {
   // complement with a dense joint-space matrix up to
   // AlSolver::kMaxDenseSchurRows constraint rows, with a sparse one above.
   AlMethod linear_solver = AlMethod::Automatic;
+  Formulation formulation = Formulation::Auto;
 };
 
 struct Model {

@@ -271,6 +271,7 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
   f.setAttribute("/", "rejected_steps", r.rejected_steps);
   f.setAttribute("/", "status", r.status);
   f.setAttribute("/", "integrator", r.integrator);
+  f.setAttribute("/", "formulation", r.formulation);
   // The tolerances actually used (scene, preset or --rtol), for studies that
   // compare runs.
   f.setAttribute("/", "rtol", model.settings.rtol);

@@ -15,6 +15,9 @@ namespace fc::mbs {
 struct RunSummary {
   std::string status = "completed";
   std::string integrator;
+  // "tree" (joint coordinates, kinematic_tree.h) or "constrained", with why
+  // when auto could not use the tree: "constrained (flexible body B)".
+  std::string formulation = "constrained";
   std::vector<std::string> event_log;       // "t=...: what"
   std::vector<std::string> integrator_log;  // "t=...: method (why)", automatic switches
   long steps = 0, rejected_steps = 0, evaluations = 0;

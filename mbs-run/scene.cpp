@@ -443,7 +443,15 @@ void applyPreset(const InputNode& node, Settings& st) {
 
 void parseSimulation(const InputNode& s, Settings& st) {
   s.allowKeys({"preset", "t_end", "output_step", "rtol", "atol", "integrator", "max_step", "penalty",
-               "stabilization_frequency", "stabilization_damping", "multiplier_iterations", "linear_solver"});
+               "stabilization_frequency", "stabilization_damping", "multiplier_iterations", "linear_solver",
+               "formulation"});
+  if (auto fm = s.get("formulation")) {
+    const std::string v = fm->asString();
+    if (v == "auto") st.formulation = Formulation::Auto;
+    else if (v == "tree") st.formulation = Formulation::Tree;
+    else if (v == "constrained") st.formulation = Formulation::Constrained;
+    else fm->fail("expected auto, tree or constrained, got '" + v + "'");
+  }
   if (auto ls = s.get("linear_solver")) {
     const std::string v = ls->asString();
     if (v == "auto") st.linear_solver = AlMethod::Automatic;

@@ -14,6 +14,7 @@
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/joint_limits.h"
 #include "mbs-run/run_quality.h"
+#include "mbs-run/tree_simulation.h"
 
 namespace fc::mbs {
 
@@ -184,11 +185,17 @@ void projectKeepingEnergy(System& sys, double t, VectorXd& y) {
 }  // namespace
 
 RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& output) {
+  // An open tree of rigid bodies runs in joint coordinates (tree_simulation.h).
+  const std::string not_tree = treeFormulationDeclined(model);
+  if (not_tree.empty()) return simulateTree(model, options, output);
   const std::clock_t cpu0 = std::clock();
   const Settings& st = model.settings;
   System sys(model);
   RunSummary R;
   R.warnings = samplingWarnings(model);
+  R.formulation = "constrained (" + not_tree + ")";
+  if (st.formulation == Formulation::Tree)
+    R.warnings.push_back("formulation: tree is not possible here (" + not_tree + "): the run is constrained");
   SummarySink sink(model, output, R);
   const Tolerances tol = tolerances(st, sys.size());
   // Stops on revolute joints (joint_limits.h): a rebound rests when its

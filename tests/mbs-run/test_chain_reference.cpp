@@ -43,7 +43,7 @@ std::string chainScene(int n, double t_end, double rtol, double atol) {
                   k, k ? ("L" + std::to_string(k - 1)).c_str() : "ground", k, k ? kL / 2 : 0.0, -kL / 2);
     j += s;
   }
-  std::snprintf(s, sizeof s, "simulation: {t_end: %g, output_step: %g, rtol: %g, atol: %g, integrator: dopri5}\n",
+  std::snprintf(s, sizeof s, "simulation: {t_end: %g, output_step: %g, rtol: %g, atol: %g, integrator: dopri5, formulation: constrained}\n",
                 t_end, t_end / 10, rtol, atol);
   return b + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\n" + s;
 }
