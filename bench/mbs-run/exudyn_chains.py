@@ -22,7 +22,7 @@ step at rtol 1e-9 and below, the rounding of its dense N x N mass-matrix solve
 being above atol); CPU is process time of the solve.
 
 Usage: exudyn_chains.py --exudyn DIR --bench PATH [--sizes 10 50 200] [--rtols ...] [--t-end T]
-                        [--ref-rtol R] [--per-eval]
+                        [--ref-rtol R] [--per-eval] [--formulation auto|tree|constrained] [--timeout S]
   DIR: the folder holding the `exudyn` package with exudynCPPfast*.so in it.
 """
 import argparse
@@ -36,9 +36,9 @@ I_AXIAL = 0.5 * M * (D / 2) ** 2
 I_TRANS = M * (3 * (D / 2) ** 2 + L * L) / 12
 
 
-def mbs_run(bench, n, t_end, rtol):
-    line = subprocess.run([bench, "tip", str(n), repr(t_end), repr(rtol)], capture_output=True, text=True,
-                          check=False).stdout
+def mbs_run(bench, n, t_end, rtol, formulation="auto"):
+    line = subprocess.run([bench, "tip", str(n), repr(t_end), repr(rtol), formulation], capture_output=True,
+                          text=True, check=False).stdout
     head, _, status = line.partition(" status ")
     w = head.split()
     return {"cpu": float(w[1]), "steps": int(w[3]), "evals": int(w[5]), "tip": (float(w[7]), float(w[8])),
@@ -150,6 +150,9 @@ def main():
     ap.add_argument("--t-end", type=float, default=0.0, help="span [s]; default 1 s up to N = 50, 0.5 s above")
     ap.add_argument("--ref-rtol", type=float, default=1e-10, help="rtol of mbs-run's reference run")
     ap.add_argument("--per-eval", action="store_true", help="only Exudyn's CPU per evaluation for each N")
+    ap.add_argument("--formulation", default="auto", choices=["auto", "tree", "constrained"],
+                    help="mbs-run's formulation (auto: joint coordinates for these chains)")
+    ap.add_argument("--timeout", type=float, default=120.0, help="Exudyn's longest run [s wall]")
     a = ap.parse_args()
     sys.path.insert(0, a.exudyn)
     sys.exudynFast = True  # the build without range checks, the fastest
@@ -164,12 +167,12 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     for n in a.sizes:
         t_end = a.t_end if a.t_end > 0 else 1.0 if n <= 50 else 0.5
-        ref = mbs_run(a.bench, n, t_end, a.ref_rtol)
+        ref = mbs_run(a.bench, n, t_end, a.ref_rtol, a.formulation)
         print(f"| {n} | {t_end} | reference {a.ref_rtol:.0e} ({ref['status'][:40]}) | {ref['cpu'] / t_end:.3g} | - | "
               f"{ref['steps']} | | | |", flush=True)
         for rtol in a.rtols:
-            r = mbs_run(a.bench, n, t_end, rtol)
-            timeout = max(120.0, 30.0 * r["cpu"])
+            r = mbs_run(a.bench, n, t_end, rtol, a.formulation)
+            timeout = max(a.timeout, 30.0 * r["cpu"])
             e = exudyn_timed(a.exudyn, n, t_end, rtol, timeout)
             exu_cols = (f"{e['cpu'] / t_end:.3g} | {math.dist(e['tip'], ref['tip']):.1e} | {e['cpu'] / r['cpu']:.2f}"
                         if e else f"no answer in {timeout:.0f} s (wall) | - | > {timeout / r['cpu']:.0f}")
