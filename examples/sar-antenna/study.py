@@ -89,9 +89,12 @@ CB_GAP = 0.01  # between split footprints: their outlines are mesh lines, and he
 CB_NOT_BOUNDARY = ("H23",)
 CB_BASE = dict(tri=0.025, modes=8, truss=2, rtol=1e-6, integ="dopri5", preset=None)
 # The reference keeps the base's 8 modes (its mode error is estimated from the mode sequence at the base
-# mesh instead of a second fine basis). h = 0.00625 (470 000 DOF, 160 000 triangles per panel) is left out:
-# fe-prep needs ~3 CPU minutes per panel and basis there, too much for a study run on a shared machine.
+# mesh instead of a second fine basis). Its own mesh error is measured against one finer mesh,
+# CB_CHECK_MESH (160 000 triangles per panel), run without the scene's contact monitor: the monitor is an
+# output (distances), it does not act on the dynamics (checked: the reference's mesh with and without it),
+# and at that mesh it would cost ~20 ms per step. These runs stay out of the Pareto front (no monitor).
 CB_REF = dict(CB_BASE, tri=0.0125, rtol=1e-7)
+CB_CHECK_MESH = 0.00625
 CB_MESHES = [0.1, 0.05, 0.025, 0.0125]
 CB_PANEL_MODES = [2, 4, 8, 16, 32]
 
@@ -121,7 +124,12 @@ def run_name(c):
     if c["preset"]:
         return f"preset_{c['preset']}"
     mesh = f"t{c['tri']}" if isinstance(c["tri"], int) else f"h{c['tri']:g}"
-    return f"{mesh}_m{c['modes']}_k{c['truss']}_r{c['rtol']:.0e}_{c['integ']}"
+    return f"{mesh}_m{c['modes']}_k{c['truss']}_r{c['rtol']:.0e}_{c['integ']}" + ("" if monitored(c) else "_nomon")
+
+
+def monitored(c):
+    """Whether the run keeps the scene's contact monitor (outputs: distances); see CB_CHECK_MESH."""
+    return c.get("monitor", True)
 
 
 def sweep(args):
@@ -168,6 +176,7 @@ def sweep_cb():
              ("combined", dict(BASE, rtol=1e-4)),
              ("combined", dict(BASE, tri=0.0125, rtol=1e-4))]
     runs += [("integrator", dict(BASE, integ="trbdf2", rtol=1e-4))]
+    runs += [("mesh check", dict(BASE, tri=h, monitor=False)) for h in (REF["tri"], CB_CHECK_MESH)]
     return runs
 
 
@@ -261,6 +270,11 @@ def make_scene(args, scene0, panels, c):
         elif n in TRUSSES:
             b["flexible"]["file"] = os.path.join(args.bodies, TRUSSES[n] + ".h5")
             b["flexible"]["modes"] = c["truss"]
+    if not monitored(c):
+        outputs = {k: v for k, v in scene.get("outputs", {}).items() if k != "distances"}
+        scene.pop("outputs", None)
+        if outputs:
+            scene["outputs"] = outputs
     sim = {k: v for k, v in scene.get("simulation", {}).items()
            if k not in ("rtol", "atol", "integrator", "preset")}
     sim["t_end"] = T_END
@@ -453,7 +467,7 @@ def tag(c):
     if c["preset"]:
         return f"preset {c['preset']}"
     t = f"{mesh_tag(c['tri'])}/{c['modes']}m/{c['truss']}k/{c['rtol']:.0e}"
-    return t + (" trbdf2" if c["integ"] == "trbdf2" else "")
+    return t + (" trbdf2" if c["integ"] == "trbdf2" else "") + ("" if monitored(c) else " no monitor")
 
 
 def same_model_as_ref(c):
@@ -463,7 +477,8 @@ def same_model_as_ref(c):
 
 def plot_pareto(args, unique, res, ref_uncertainty):
     # Runs of the reference's own mesh and modes are left out: they would rank as exact.
-    names = [n for n in unique if not same_model_as_ref(unique[n]) and np.isfinite(res[n]["a_max"])]
+    names = [n for n in unique if not same_model_as_ref(unique[n]) and monitored(unique[n])
+             and np.isfinite(res[n]["a_max"])]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
     front = {}
     for ax, key, unc, label in ((axes[0], "a_max", ref_uncertainty[0], "max |error| of the R3 angle [rad]"),
@@ -574,7 +589,9 @@ def write_doc(args, runs, unique, res, ref, scene_src):
                  "S10, S14, S9, S11, S16) is a distributing (RBE3) patch of the nodes in a bracket footprint, the "
                  f"square of half-side {CB_FOOTPRINT:g} m about the joint's projection (the edge cuts it to "
                  f"{2 * CB_FOOTPRINT:g} x {CB_FOOTPRINT:g} m, a corner to {CB_FOOTPRINT:g} x {CB_FOOTPRINT:g} m), "
-                 "split at mid-distance between joints closer than that (S2/S6, S3/S10, S12/S14, S8/S16); all of "
+                 f"split at mid-distance between joints closer than that (S2/S6, S3/S10, S12/S14, S8/S16) with a "
+                 f"{1000 * CB_GAP:g} mm gap; each footprint's outline is a mesh line (fe-prep meshes box patches "
+                 "conforming) and a node weighs its share of the footprint's own triangles; all of "
                  "them are the pinned boundary of a Craig-Bampton basis (`reduction: craig_bampton`, `modes: all` in "
                  "the scene). Mesh by element size h, modes = fixed-interface modes per panel (`study.py --model "
                  "cb`); H23 (stop-only, active after alignment) on one node")
@@ -630,11 +647,11 @@ def write_doc(args, runs, unique, res, ref, scene_src):
     L.append("| meshes | R3 angle max | omega max | angle ratio to the previous step |")
     L.append("|---|---|---|---|")
     prev = None
-    for a, b in zip(MESHES[:-1], MESHES[1:]):
-        e = errors(R(dict(BASE, tri=a)), R(dict(BASE, tri=b)), args.t_cut)
+    for label, ca, cb in mesh_pairs(args):
+        e = errors(R(ca), R(cb), args.t_cut)
         ratio = f"{prev / e['a_max']:.2f}" if prev else "-"
         prev = e["a_max"]
-        L.append(f"| {a} -> {b} | {fmt(e['a_max'])} | {fmt(e['w_max'])} | {ratio} |")
+        L.append(f"| {label} | {fmt(e['a_max'])} | {fmt(e['w_max'])} | {ratio} |")
     L.append("")
     L.append(f"Mode self-convergence ({mesh_words(BASE['tri'])}, rtol 1e-6; distance between successive mode counts "
              "per panel before the toggle):\n")
@@ -837,6 +854,16 @@ def patch_geometry(args, h, modes):
     return g
 
 
+def mesh_pairs(args):
+    """Successive meshes of the base model (label, coarser, finer); for cb the reference's mesh against
+    CB_CHECK_MESH too, both without the contact monitor (see CB_CHECK_MESH)."""
+    pairs = [(f"{a} -> {b}", dict(BASE, tri=a), dict(BASE, tri=b)) for a, b in zip(MESHES[:-1], MESHES[1:])]
+    if is_cb(args):
+        pairs.append((f"{MESHES[-1]} -> {CB_CHECK_MESH} (no monitor)", dict(BASE, tri=MESHES[-1], monitor=False),
+                      dict(BASE, tri=CB_CHECK_MESH, monitor=False)))
+    return pairs
+
+
 def steady_from(diffs):
     """Index of the first step from which every later difference is at most half the one before, or None."""
     for i in range(len(diffs) - 1):
@@ -847,18 +874,18 @@ def steady_from(diffs):
 
 def cb_convergence_text(args, R):
     L = []
-    mesh_d = [errors(R(dict(BASE, tri=a)), R(dict(BASE, tri=b)), args.t_cut)["a_max"]
-              for a, b in zip(MESHES[:-1], MESHES[1:])]
+    mesh_d = [errors(R(ca), R(cb), args.t_cut)["a_max"] for _, ca, cb in mesh_pairs(args)]
+    levels = MESHES + [CB_CHECK_MESH]
     mode_d = [errors(R(dict(BASE, modes=a)), R(dict(BASE, modes=b)), args.t_cut)["a_max"]
               for a, b in zip(PANEL_MODES[:-1], PANEL_MODES[1:])]
-    geo = [patch_geometry(args, h, BASE["modes"]) for h in MESHES]
+    geo = [patch_geometry(args, h, BASE["modes"]) for h in levels]
     L.append("What the boundary patches represent on each mesh (fe-prep meshes every footprint conforming, its "
              "outline a mesh line, and weighs each patch node by its share of the footprint's own triangles; "
              "recomputed here from the body files' meshes, largest over all patches):\n")
     L.append("| h [m] | nodes in the smallest patch | weights' area vs footprint | centre offset [mm] | "
              "second moments vs footprint |")
     L.append("|---|---|---|---|---|")
-    for h, g in zip(MESHES, geo):
+    for h, g in zip(levels, geo):
         L.append(f"| {h:g} | {g['nodes']} | {g['area']:.1e} | {1000 * g['centre']:.1e} | +{100 * g['second']:.1f} % |")
     L.append("\nEvery mesh models the same brackets: area and centre exact (rounding), the second moments (how a "
              "moment spreads over the patch) converging as h^2.\n")
@@ -872,7 +899,7 @@ def cb_convergence_text(args, R):
                  "less per halving of h at every step (ratios "
                  + ", ".join(f"{a / b:.2f}" for a, b in zip(mesh_d[:-1], mesh_d[1:])) + ").\n")
     else:
-        L.append(f"From h = {MESHES[i]:g} m on successive meshes differ by " + ", ".join(fmt(d) for d in mesh_d[i:])
+        L.append(f"From h = {levels[i]:g} m on successive meshes differ by " + ", ".join(fmt(d) for d in mesh_d[i:])
                  + " rad in R3: at least 2x less per halving of h; before it " + ", ".join(fmt(d) for d in mesh_d[:i])
                  + " rad (ratios " + ", ".join(f"{a / b:.2f}" for a, b in zip(mesh_d[:-1], mesh_d[1:])) + ").\n")
     j = steady_from(mode_d)
@@ -881,23 +908,26 @@ def cb_convergence_text(args, R):
     else:
         L.append(f"From {PANEL_MODES[j]} fixed-interface modes on, successive doublings differ by "
                  + ", ".join(fmt(d) for d in mode_d[j:]) + " rad in R3: at least 2x less per doubling. "
-                 + (f"Below it ({', '.join(fmt(d) for d in mode_d[:j])} rad) the basis is dominated by its "
-                    "constraint modes.\n" if j > 0 else "\n"))
-    # Remaining error of the reference: the geometric tail of its last refinement steps.
+                 + (f"Before it: {', '.join(fmt(d) for d in mode_d[:j])} rad (ratios "
+                    + ", ".join(f"{a / b:.2f}" for a, b in zip(mode_d[:j + 1], mode_d[1:j + 2])) + ").\n"
+                    if j > 0 else "\n"))
+    monitor = errors(R(dict(BASE, tri=MESHES[-1], monitor=False)), R(dict(BASE, tri=MESHES[-1])), args.t_cut)
+    L.append(f"The contact monitor does not act on the dynamics: h = {MESHES[-1]:g} m with and without it differs by "
+             f"{fmt(monitor['a_max'])} rad in R3.\n")
+    # The reference's own mesh error is measured (its mesh against the check mesh), plus the geometric tail
+    # beyond it; its mode error is the mode sequence's steps beyond its count at the base mesh, plus their tail.
     conv = R(dict(REF, tri=MESHES[-2]))["a_max"]
-    # (mesh: the reference is the finest; modes: it keeps REF's count, so the later steps add to the tail).
     tails = []
-    for d, later in ((mesh_d, []), (mode_d, mode_d[PANEL_MODES.index(REF["modes"]):])):
+    for d, later in ((mesh_d, mesh_d[-1:]), (mode_d, mode_d[PANEL_MODES.index(REF["modes"]):])):
         q = d[-2] / d[-1] if d[-1] > 0 else np.inf
         tails.append(sum(later) + (d[-1] / (q - 1) if q > 1 else np.inf))
     total = tails[0] + tails[1]
-    L.append(f"The reference is {fmt(conv)} rad in R3 before alignment from the next-finest mesh (h = "
-             f"{MESHES[-2]:g} m, same modes). Its own remaining error, from the differences still to come (the "
-             f"sequences above continued geometrically with their last ratio; the modes' from the sequence at "
-             f"h = {BASE['tri']:g} m, beyond the reference's {REF['modes']} modes): {fmt(tails[0])} rad (mesh) + "
-             f"{fmt(tails[1])} rad (modes) = {fmt(total)} rad: "
-             + ("converged to better than 1e-3 rad." if max(conv, total) < 1e-3 else "NOT converged to 1e-3 rad.")
-             + "\n")
+    L.append(f"The reference (h = {REF['tri']:g} m) is {fmt(conv)} rad in R3 before alignment from the next-coarser "
+             f"mesh and {fmt(mesh_d[-1])} rad from the next-finer one (h = {CB_CHECK_MESH:g} m). Its remaining error "
+             f"(the finer mesh's distance plus the sequences continued geometrically with their last ratio; the "
+             f"modes' from the sequence at h = {BASE['tri']:g} m, beyond the reference's {REF['modes']} modes): "
+             f"{fmt(tails[0])} rad (mesh) + {fmt(tails[1])} rad (modes) = {fmt(total)} rad: "
+             + ("converged to better than 1e-3 rad." if total < 1e-3 else "NOT converged to 1e-3 rad.") + "\n")
     return L
 
 
@@ -942,8 +972,8 @@ def compare_fronts(args, unique, res, front):
     folder, _, label = args.compare.partition(":")
     folder = os.path.abspath(folder)
     ref_row = next(r for r in read_summary(folder) if float(r["a_max"]) == 0)  # the other study's reference
-    rows = [r for r in read_summary(folder) if np.isfinite(float(r["a_max"])) and not all(
-        r[k] == ref_row[k] for k in ("triangles", "panel_modes", "truss_modes"))]
+    rows = [r for r in read_summary(folder) if np.isfinite(float(r["a_max"])) and not r["run"].endswith("_nomon")
+            and not all(r[k] == ref_row[k] for k in ("triangles", "panel_modes", "truss_modes"))]
 
     def label_of(r):
         if r["preset"]:
