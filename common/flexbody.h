@@ -16,8 +16,10 @@
 // J_k = diag(nodal rotary inertias), kept fixed in body axes (the small elastic
 // rotation of a node's own inertia is neglected, as in a lumped-mass FE model).
 // Every term of the mass matrix and of the quadratic velocity vector is a
-// polynomial in w whose coefficients are the sums below; mbs-run therefore never
-// loops over nodes. The kernel that uses them: mbs-run/flexible/flexible_inertia.h.
+// polynomial in w whose coefficients are the sums below; mbs-run loops over the
+// nodes only for the terms quadratic in w of a body with more modes than nodal
+// rows, where that is cheaper (mbs-run/flexible/nodal_inertia.h). The kernel
+// that uses them: mbs-run/flexible/flexible_inertia.h.
 #include <Eigen/Dense>
 #include <array>
 #include <map>

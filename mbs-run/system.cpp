@@ -199,14 +199,16 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
     if (b.flex && modal_mass_[k].size() > 0) {
       // Floating frame of reference, modal mass diagonal: the arrow block
       // (the six rigid rows and the constant modal diagonal), O(modes).
-      FlexibleInertiaRows fi = flexibleInertiaRows(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w);
+      FlexibleInertiaRows fi = flexibleInertiaRows(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w,
+                                                   b.flex->nodal.get());
       Mb.swap(fi.top);
       Db = modal_mass_[k];
       Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
     } else if (b.flex) {
       // Floating frame of reference: inertia from the body file's invariants
       // (mbs-run/flexible, shared conventions of the flexible-body kernel).
-      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w);
+      const FlexibleInertia fi =
+          flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w, b.flex->nodal.get());
       Mb = fi.M;
       Db.resize(0);
       Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
@@ -430,7 +432,7 @@ std::string System::nonFiniteCause(double t, const VectorXd& y) {
     if (b.fixed) continue;
     const BodyPose& P = P_[k];
     if (b.flex) {
-      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P.A, P.modal, P.modal_rate, P.w);
+      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P.A, P.modal, P.modal_rate, P.w, b.flex->nodal.get());
       if (!finite(fi.M) || !finite(fi.Qv)) return "the inertia of flexible body " + b.name + " (its body file)";
       if (b.modes > 0 && !finite(elasticForces(b.flex->modal, P.modal, P.modal_rate)))
         return "the modal stiffness of flexible body " + b.name + " (its body file)";
@@ -511,7 +513,7 @@ Energies System::energies(double t, const VectorXd& y) const {
     if (b.flex) {
       Eigen::VectorXd v(b.nv());
       v << P[k].rdot, P[k].w, P[k].modal_rate;
-      e.kinetic += kineticEnergy(b.flex->inertia, P[k].A, P[k].modal, v);
+      e.kinetic += kineticEnergy(b.flex->inertia, P[k].A, P[k].modal, v, b.flex->nodal.get());
       e.strain += strainEnergy(b.flex->modal, P[k].modal);
     } else {
       e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);

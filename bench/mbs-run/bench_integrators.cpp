@@ -3,10 +3,13 @@
 //  A. a flexible beam pendulum (pinned-root modes of a Hermite beam, written
 //     by tests/mbs-run/beam_body.h) with 4..200 modes: CPU per simulated
 //     second of `imex` (and `dopri5` where it finishes in reasonable time);
+//  N. the two forms of the flexible inertia's second-order terms per
+//     evaluation (flexible/nodal_inertia.h) on bodies moving along every
+//     axis, n nodes x nm modes: what nodalFormCheaper's rule is set from;
 //  B. the stiff beam pendulum (4 modes, first mode 145 Hz) at rtol 1e-6:
 //     real-time factor of `dopri5` and `imex`;
 // (Rigid chains, issue 17's third part: bench_chains.cpp.)
-// Usage: bench_integrators [A|B]... [modes] (all when none given; modes:
+// Usage: bench_integrators [A|N|B]... [modes] (all when none given; modes:
 // only that row of A, for profiling; "AE": A's per-evaluation rows only).
 #include <cmath>
 #include <cstdio>
@@ -16,6 +19,9 @@
 #include <string>
 
 #include "../../tests/mbs-run/beam_body.h"
+#include "../../tests/mbs-run/flexible/random_body.h"
+#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/flexible/flexible_inertia.h"
 #include "mbs-run/simulation.h"
 #include "mbs-run/system.h"
 
@@ -60,19 +66,33 @@ void modes(int only, bool evaluations_only) {
       // initial state (the costs do not depend on the state's values).
       const fc::mbs::Model m = fc::mbs::test::sceneFromText(
           pendulumScene(file, nm, "{t_end: 0.1, output_step: 0.01, rtol: 1e-4, integrator: imex}"));
+      // The invariant form forced, for the before/after comparison.
+      fc::mbs::Model mi = m;
+      auto fi = std::make_shared<fc::mbs::FlexibleBodyData>(*m.bodies[1].flex);
+      const char* form = fi->nodal ? "node form" : "invariants";
+      fi->nodal.reset();
+      mi.bodies[1].flex = fi;
+      const int reps = std::max(200, 2000000 / (nm * nm));
+      auto perEvaluation = [&](const fc::mbs::Model& model) {
+        fc::mbs::System s(model);
+        Eigen::VectorXd y = s.initialState(), yd;
+        s.initializeJoints(y);
+        s.project(0.0, y);
+        s.derivative(0.0, y, yd);  // warm
+        const std::clock_t c = std::clock();
+        for (int k = 0; k < reps; ++k) s.derivative(0.0, y, yd);
+        return 1e6 * double(std::clock() - c) / CLOCKS_PER_SEC / reps;
+      };
+      const double us_rhs = perEvaluation(m), us_inv = perEvaluation(mi);
       fc::mbs::System sys(m);
-      Eigen::VectorXd yv = sys.initialState(), yd;
+      Eigen::VectorXd yv = sys.initialState();
       sys.initializeJoints(yv);
       sys.project(0.0, yv);
-      const int reps = std::max(20, 200000 / (nm * nm));
       std::clock_t c0 = std::clock();
-      for (int k = 0; k < reps; ++k) sys.derivative(0.0, yv, yd);
-      const double us_rhs = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / reps;
-      c0 = std::clock();
       for (int k = 0; k < std::max(3, reps / nm); ++k) sys.modalSplit(0.0, yv);
       const double us_split = 1e6 * double(std::clock() - c0) / CLOCKS_PER_SEC / std::max(3, reps / nm);
-      std::printf("| %d | per evaluation | %.1f us (%.3f us per mode) | modal split (response) | %.0f us | | | | | |\n", nm,
-                  us_rhs, us_rhs / nm, us_split);
+      std::printf("| %d | per evaluation | %.1f us (%.3f us per mode, %s; invariants %.1f us) | modal split (response) | %.0f us | | | | | |\n",
+                  nm, us_rhs, us_rhs / nm, form, us_inv, us_split);
     }
     if (evaluations_only) {
       std::filesystem::remove(file);
@@ -98,6 +118,35 @@ void modes(int only, bool evaluations_only) {
     }
     std::filesystem::remove(file);
   }
+}
+
+// Part N: per evaluation of flexibleInertiaRows, both forms, random bodies
+// whose modes move every node along every axis (r = 3 n rows).
+void forms() {
+  std::printf("\n### N. Second-order inertia terms per evaluation: invariants (nm x nm) against the node form (r = 3 n rows)\n\n");
+  std::printf("| nodes n | modes nm | 6 r / 9 nm | invariants [us] | node form [us] | ratio node / invariants |\n|---|---|---|---|---|---|\n");
+  for (int nm : {16, 64, 100, 200})
+    for (int n : {nm / 8, nm / 4, nm / 2, nm}) {
+      if (n < 4) continue;
+      const fc::FlexBody body = fc::testing::randomBody(n, nm, 3);
+      const fc::InertiaInvariants inv = fc::computeInertiaInvariants(body);
+      const fc::mbs::NodalInertia ni = fc::mbs::nodalInertia(body, nm);
+      const Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+      const Eigen::VectorXd w = 0.01 * Eigen::VectorXd::Ones(nm), wd = Eigen::VectorXd::Ones(nm);
+      const Eigen::Vector3d om(0.1, 0.2, 0.3);
+      const int reps = std::max(200, 20000000 / (nm * nm + 3 * n * nm));
+      double us[2];
+      for (int f = 0; f < 2; ++f) {
+        double sink = 0;
+        const std::clock_t c = std::clock();
+        for (int k = 0; k < reps; ++k) sink += fc::mbs::flexibleInertiaRows(inv, A, w, wd, om, f ? &ni : nullptr).Qv[6];
+        us[f] = 1e6 * double(std::clock() - c) / CLOCKS_PER_SEC / reps;
+        if (sink == 42.0) std::printf(" ");
+      }
+      std::printf("| %d | %d | %.2f | %.2f | %.2f | %.2f |\n", n, nm, 6.0 * double(ni.rows()) / (9.0 * nm), us[0], us[1],
+                  us[1] / us[0]);
+      std::fflush(stdout);
+    }
 }
 
 void stiff() {
@@ -127,7 +176,8 @@ void stiff() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string which = argc > 1 ? argv[1] : "AB";
+  const std::string which = argc > 1 ? argv[1] : "ANB";
   if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0, which.find('E') != std::string::npos);
+  if (which.find('N') != std::string::npos) forms();
   if (which.find('B') != std::string::npos) stiff();
 }

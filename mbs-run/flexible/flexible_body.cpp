@@ -40,6 +40,14 @@ FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double dam
   b.modal = modalProperties(f.body.eigenvalues, damping_ratio);
   b.frequencies_hz = f.body.frequencies_hz;
   b.interfaces = f.body.interfaces;
+  // The node form reads the nodal masses and shapes, so it is considered only
+  // when it can be the cheaper one: every node of a mesh moves along at least
+  // one axis, so its rows r are at least the node count.
+  if (b.modes > 0 && nodalFormCheaper(H5File(file, H5File::Mode::Read).shape("/mesh/nodes").at(0), b.modes)) {
+    const FlexBodyFile all = readFlexBody(file, modes, FlexBodyParts::All);
+    auto nodal = std::make_shared<NodalInertia>(nodalInertia(all.body, b.modes));
+    if (nodalFormCheaper(nodal->rows(), b.modes)) b.nodal = std::move(nodal);
+  }
   return b;
 }
 

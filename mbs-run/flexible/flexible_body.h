@@ -16,6 +16,7 @@
 #include "mbs-run/flexible/geometric_stiffening.h"
 #include "mbs-run/flexible/marker.h"
 #include "mbs-run/flexible/modal.h"
+#include "mbs-run/flexible/nodal_inertia.h"
 
 namespace fc::mbs {
 
@@ -24,6 +25,10 @@ struct FlexibleBodyData {
   int modes = 0;
   double damping_ratio = 0.0;
   InertiaInvariants inertia;
+  // The node form of the second-order inertia terms when it is the cheaper
+  // one for this body's nodes and modes (nodal_inertia.h), decided at load
+  // time; null: the invariants' nm x nm products.
+  std::shared_ptr<const NodalInertia> nodal;
   ModalProperties modal;
   Eigen::VectorXd frequencies_hz;
   std::vector<FlexInterface> interfaces;  // shapes restricted to the first `modes` modes

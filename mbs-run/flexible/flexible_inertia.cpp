@@ -28,9 +28,14 @@ struct Deformed {
   Eigen::Vector3d S;      // sum m s
   Eigen::Matrix3d E;      // sum m s s^T
   Eigen::MatrixXd B;      // (9, nm): row 3a+b = sum m s_a Phi_b
+  // Node form with rates: sum_{a<b} 2 omega~_ab (S_ab - S_ab^T) wdot (nm); empty otherwise.
+  Eigen::VectorXd coriolis;
 };
 
-Deformed deformed(const InertiaInvariants& inv, const Eigen::VectorXd& w) {
+// nodal: the node form of the second-order terms (nodal_inertia.h), null for
+// the invariants' S_ab; wdot (with nodal) also gives the Coriolis rows.
+Deformed deformed(const InertiaInvariants& inv, const NodalInertia* nodal, const Eigen::VectorXd& w,
+                  const Eigen::VectorXd* wdot = nullptr, const Eigen::Vector3d& omega = Eigen::Vector3d::Zero()) {
   const int nm = inv.n_modes;
   if (w.size() != nm)
     throw std::invalid_argument("flexible body: " + std::to_string(w.size()) +
@@ -41,6 +46,13 @@ Deformed deformed(const InertiaInvariants& inv, const Eigen::VectorXd& w) {
   d.B = inv.modal_second_moment;
   if (nm == 0) return d;
   const Eigen::VectorXd cw = inv.modal_second_moment * w;  // (9): C_ab . w
+  if (nodal) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) d.E(a, b) += cw(3 * a + b) + cw(3 * b + a);
+    if (wdot) d.coriolis = Eigen::VectorXd::Zero(nm);
+    addNodalSecondOrder(*nodal, w, wdot, omega, d.B, d.E, wdot ? &d.coriolis : nullptr);
+    return d;
+  }
   // S_ba = S_ab^T, so S_ab^T w and S_ba^T w = S_ab w come from one pass over
   // S_ab (a <= b): six nm x nm matrices read instead of nine. These products
   // (the second-order terms in w) are the only O(nm^2) work per evaluation.
@@ -128,7 +140,8 @@ Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Mat
       for (int b = 0; b < 3; ++b) qf += W2(a, b) * d.B.row(3 * b + a).transpose();
     // sum_ab 2 Wt_ab S_ab wdot over a != b, Wt skew: 2 Wt_ab (S_ab - S_ab^T) wdot for a < b.
     Eigen::VectorXd St_wd(nm), S_wd(nm);
-    for (int a = 0; a < 3; ++a)
+    if (d.coriolis.size() == nm) qf += d.coriolis;  // node form: already summed over the nodes
+    else for (int a = 0; a < 3; ++a)
       for (int b = a + 1; b < 3; ++b) {
         if (Wt(a, b) == 0.0) continue;
         transposedAndDirectProducts(inv.modal_products[3 * a + b], wdot, St_wd, S_wd);
@@ -142,14 +155,14 @@ Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Mat
 }  // namespace
 
 Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                                   const Eigen::VectorXd& w) {
-  return massMatrix(inv, A, deformed(inv, w));
+                                   const Eigen::VectorXd& w, const NodalInertia* nodal) {
+  return massMatrix(inv, A, deformed(inv, nodal, w));
 }
 
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                const Eigen::Vector3d& omega) {
-  const Deformed d = deformed(inv, w);
+                                const Eigen::Vector3d& omega, const NodalInertia* nodal) {
+  const Deformed d = deformed(inv, nodal, w, &wdot, omega);
   FlexibleInertia out;
   out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
   out.M = massMatrix(inv, A, d);
@@ -158,8 +171,8 @@ FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matri
 
 FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                         const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                        const Eigen::Vector3d& omega) {
-  const Deformed d = deformed(inv, w);
+                                        const Eigen::Vector3d& omega, const NodalInertia* nodal) {
+  const Deformed d = deformed(inv, nodal, w, &wdot, omega);
   FlexibleInertiaRows out;
   out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
   out.top = topRows(inv, A, d);
@@ -167,8 +180,8 @@ FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eige
 }
 
 double kineticEnergy(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                     const Eigen::VectorXd& w, const Eigen::VectorXd& v) {
-  return 0.5 * v.dot(flexibleMassMatrix(inv, A, w) * v);
+                     const Eigen::VectorXd& w, const Eigen::VectorXd& v, const NodalInertia* nodal) {
+  return 0.5 * v.dot(flexibleMassMatrix(inv, A, w, nodal) * v);
 }
 
 Eigen::Vector3d linearMomentum(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
@@ -184,7 +197,7 @@ Eigen::Vector3d angularMomentum(const InertiaInvariants& inv, const Eigen::Vecto
 }
 
 Eigen::Vector3d deformedCenterOfMass(const InertiaInvariants& inv, const Eigen::VectorXd& w) {
-  return deformed(inv, w).S / inv.mass;
+  return deformed(inv, nullptr, w).S / inv.mass;
 }
 
 }  // namespace fc::mbs

@@ -3,7 +3,8 @@
 // lumped nodal masses (the paper's eqs. (5)-(6): u' = X w, modal mass block I;
 // Ambrosio & Goncalves, Multibody Syst. Dyn. 6 (2001) 163-182; Shabana, Dynamics
 // of Multibody Systems, 3rd ed., sec. 5.5), evaluated from the invariants of
-// common/flexbody.h without looping over nodes.
+// common/flexbody.h, or for many modes on few nodes their second-order
+// terms as sums over the nodes (nodal_inertia.h: O(r nm) instead of O(nm^2)).
 //
 // Velocity coordinates v = [rdot (3, global), omega' (3, body axes), wdot (nm)].
 // With s(w) = s0 + Phi w per node, S(w) = S0 + S1 w, B_ab(w) = C_ab + w^T S_ab
@@ -21,6 +22,7 @@
 #include <Eigen/Dense>
 
 #include "common/flexbody.h"
+#include "mbs-run/flexible/nodal_inertia.h"
 
 namespace fc::mbs {
 
@@ -32,7 +34,10 @@ struct FlexibleInertia {
 // A: body->global rotation; w, wdot: modal coordinates and rates; omega: omega'.
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                const Eigen::Vector3d& omega);
+                                const Eigen::Vector3d& omega, const NodalInertia* nodal = nullptr);
+// nodal (every function here): the node form of the second-order terms, the
+// same values to rounding at O(r nm) instead of O(nm^2) (nodal_inertia.h);
+// null: the invariants' S_ab.
 // The same without the constant modal block: the first six rows of M, whose
 // last nm columns are the coupling C = [M_rf; M_tf] (M = [top; C^T M_ff]).
 // O(nm) storage, for the solvers that use the structure of M (a diagonal
@@ -43,14 +48,15 @@ struct FlexibleInertiaRows {
 };
 FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                         const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                        const Eigen::Vector3d& omega);
+                                        const Eigen::Vector3d& omega, const NodalInertia* nodal = nullptr);
 // Only the mass matrix (what an implicit integrator's iteration matrix needs).
 Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                                   const Eigen::VectorXd& w);
+                                   const Eigen::VectorXd& w, const NodalInertia* nodal = nullptr);
 
 // T = 1/2 v^T M(w) v for v = [rdot, omega', wdot].
 double kineticEnergy(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                     const Eigen::VectorXd& w, const Eigen::VectorXd& v);
+                     const Eigen::VectorXd& w, const Eigen::VectorXd& v,
+                     const NodalInertia* nodal = nullptr);
 // Global linear momentum dT/drdot, and angular momentum about the global origin
 // r x L + A dT/domega' (dT/domega' is the body-axes momentum about the body origin).
 Eigen::Vector3d linearMomentum(const InertiaInvariants& inv, const Eigen::Matrix3d& A,

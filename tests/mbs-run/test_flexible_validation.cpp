@@ -22,6 +22,8 @@
 #include "beam_body.h"
 #include "helpers.h"
 #include "common/h5io.h"
+#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/model.h"
 #include "mbs-run/results.h"
 #include "mbs-run/simulation.h"
 
@@ -266,19 +268,26 @@ TEST(FlexibleValidation, HingedBodyWantsPinnedModes) {
   EXPECT_LT(10 * steps[1], steps[0]);
 }
 
-TEST(FlexibleValidation, FlexiblePendulumMatchesBruteForcePlanarModel) {
+void flexiblePendulumMatchesBruteForcePlanarModel(bool node_form) {
   BeamSpec s;
   s.elements = 12;
   s.modes = 3;
   s.ei = 20.0;  // softer: first mode 2.7 Hz, tip deflection ~10 % of L while swinging
   const BeamModel bm = cantileverBeam(s);
   const std::string file = writeBeam(bm, "pendulum");
-  const Results r = simulate(
-      sceneFromText(beamScene(file, 3, 0.0,
-                              "{name: pivot, type: revolute, bodies: [ground, beam], points: [[0, 0, 0], root], "
-                              "axes: [[0, 0, 1], [0, 0, 1]]}",
-                              "[0, -9.81, 0]", "{t_end: 1.2, output_step: 0.01, rtol: 1.0e-10}")),
-      {true});
+  Model m = sceneFromText(beamScene(file, 3, 0.0,
+                                    "{name: pivot, type: revolute, bodies: [ground, beam], points: [[0, 0, 0], root], "
+                                    "axes: [[0, 0, 1], [0, 0, 1]]}",
+                                    "[0, -9.81, 0]", "{t_end: 1.2, output_step: 0.01, rtol: 1.0e-10}"));
+  // Both forms of the inertia's second-order terms against the reference
+  // (3 modes on 12 nodes load with the invariants; the node form forced).
+  ASSERT_FALSE(m.bodies[1].flex->nodal);
+  if (node_form) {
+    auto f = std::make_shared<FlexibleBodyData>(*m.bodies[1].flex);
+    f->nodal = std::make_shared<NodalInertia>(nodalInertia(bm.body, 3));
+    m.bodies[1].flex = f;
+  }
+  const Results r = simulate(m, {true});
   ASSERT_EQ(r.status, "completed");
   PlanarBeam ref{bm.body, 3, Eigen::Vector2d(0, -9.81), {}};
   auto f = [&](double, const Eigen::VectorXd& y) {
@@ -299,14 +308,55 @@ TEST(FlexibleValidation, FlexiblePendulumMatchesBruteForcePlanarModel) {
     tip_max = std::max(tip_max, std::abs(tip_ref));
   }
   std::printf("[   info   ] flexible pendulum vs planar brute force: angle %.2e rad, tip deflection %.2e m (of "
-              "%.3g m), %ld steps\n",
-              err_angle, err_tip, tip_max, r.steps);
+              "%.3g m), %ld steps (%s)\n",
+              err_angle, err_tip, tip_max, r.steps, node_form ? "node form" : "invariants");
   EXPECT_GT(tip_max, 1e-3);  // the beam really bends (4.8 mm, 0.5 % of L)
   // Both solve the same equations to rtol 1e-10 (RK4 at h = 2e-5 s against
   // omega_3 = 300 rad/s: local error (h omega)^5 / 120 ~ 1e-14 per step);
   // 1e-8 allows for the error growth of the swing over 1.2 s.
   EXPECT_LT(err_angle, 1e-8);
   EXPECT_LT(err_tip, 1e-8);
+  std::filesystem::remove(file);
+}
+
+TEST(FlexibleValidation, FlexiblePendulumMatchesBruteForcePlanarModel) { flexiblePendulumMatchesBruteForcePlanarModel(false); }
+TEST(FlexibleValidation, FlexiblePendulumNodeFormMatchesBruteForcePlanarModel) {
+  flexiblePendulumMatchesBruteForcePlanarModel(true);
+}
+
+// Many modes on few nodes (40 pinned-root modes of a 24-element beam: 24
+// nodal rows) load with the node form, and a run with it is the run with the
+// invariants to rounding: the same right-hand side, the same steps.
+TEST(FlexibleValidation, ManyModesLoadTheNodeFormAndRunAsTheInvariants) {
+  BeamSpec s;
+  s.elements = 24;
+  s.modes = 40;
+  s.ei = 20.0;
+  s.pinned_root = true;
+  const BeamModel bm = cantileverBeam(s);
+  const std::string file = writeBeam(bm, "nodeform");
+  const Model m = sceneFromText(beamScene(file, 40, 0.0,
+                                          "{name: pivot, type: revolute, bodies: [ground, beam], points: [[0, 0, 0], "
+                                          "root], axes: [[0, 0, 1], [0, 0, 1]]}",
+                                          "[0, -9.81, 0]", "{t_end: 0.05, output_step: 0.01, rtol: 1.0e-8, integrator: imex}"));
+  ASSERT_TRUE(m.bodies[1].flex->nodal);
+  EXPECT_EQ(m.bodies[1].flex->nodal->rows(), 24);  // y of nodes 1..24; the pin's node does not move
+  Model mi = m;
+  auto f = std::make_shared<FlexibleBodyData>(*m.bodies[1].flex);
+  f->nodal.reset();
+  mi.bodies[1].flex = f;
+  const Results a = simulate(m, {true}), b = simulate(mi, {true});
+  ASSERT_EQ(a.status, "completed");
+  ASSERT_EQ(b.status, "completed");
+  // Rounding-level differences of the right-hand side (1e-12 relative, see
+  // test_nodal_inertia.cpp) grow by the error control's step choices at most
+  // to the order of the local error, rtol 1e-8 x the 0.05 rad swing and the
+  // ~1e-4 m deflection: 1e-10 rad and 1e-12 m, a thousandth of what any
+  // wrong term would make of the tip.
+  EXPECT_NEAR(angleZ(a.orientation[1].back()), angleZ(b.orientation[1].back()), 1e-10);
+  EXPECT_NEAR(tipDeflection(bm.body, a.modal[1].back()), tipDeflection(bm.body, b.modal[1].back()), 1e-12);
+  std::printf("[   info   ] node form vs invariants, 40 modes: %ld / %ld steps, %.3g / %.3g s CPU, tip %.6e m\n", a.steps,
+              b.steps, a.cpu_seconds, b.cpu_seconds, tipDeflection(bm.body, a.modal[1].back()));
   std::filesystem::remove(file);
 }
 
