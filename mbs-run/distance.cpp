@@ -79,14 +79,19 @@ double segmentTriangleDistance(const Vector3d& p, const Vector3d& q, const Vecto
   return d;
 }
 
+Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Vector3d& r, const Eigen::Matrix3d& A,
+                      const Eigen::VectorXd& w) {
+  Vector3d x = g.vertices.col(k);
+  if (g.modal_displacement.size() && w.size() == g.modal_displacement.cols())
+    for (Eigen::Index j = 0; j < w.size(); ++j) x += g.modal_displacement.block<3, 1>(3 * k, j) * w[j];
+  return A * x + r;
+}
+
 Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Vector3d& r, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w) {
-  Eigen::Matrix3Xd v = g.vertices;
-  if (g.modal_displacement.size() && w.size() == g.modal_displacement.cols()) {
-    const Eigen::VectorXd u = g.modal_displacement * w;
-    for (Eigen::Index k = 0; k < v.cols(); ++k) v.col(k) += u.segment<3>(3 * k);
-  }
-  return (A * v).colwise() + r;
+  Eigen::Matrix3Xd v(3, g.vertices.cols());
+  for (Eigen::Index k = 0; k < v.cols(); ++k) v.col(k) = placedVertex(g, k, r, A, w);
+  return v;
 }
 
 double geometryDistance(const BodyGeometry& ga, const Eigen::Matrix3Xd& va, const BodyGeometry& gb,

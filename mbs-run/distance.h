@@ -42,11 +42,17 @@ Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Ve
 double segmentTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
                                const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-// Vertices in the global frame for a body at (r, A) with modal coordinates w.
+// Vertex k in the global frame for a body at (r, A) with modal coordinates w:
+// A (x_k + sum_j Phi_kj w_j) + r, the sum in mode order (the broad phase,
+// contact_tree.h, places single vertices with the same arithmetic).
+Eigen::Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
+                             const Eigen::VectorXd& w);
+// Every vertex placed (placedVertex).
 Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w);
 // Smallest distance between two placed geometries (isolated vertices count
-// as points); infinity if either is empty.
+// as points); infinity if either is empty. Every primitive against every
+// other: the reference for treeDistance() (contact_tree.h), which the runs use.
 double geometryDistance(const BodyGeometry& ga, const Eigen::Matrix3Xd& va, const BodyGeometry& gb,
                         const Eigen::Matrix3Xd& vb);
 

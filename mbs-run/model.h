@@ -16,6 +16,7 @@ namespace fc::mbs {
 
 struct FlexibleBodyData;  // mbs-run/flexible/flexible_body.h
 struct BodyStressRecovery;  // mbs-run/stress_recovery.h
+struct BoundingTree;  // mbs-run/contact_tree.h
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -45,6 +46,8 @@ struct Body {
   // Shape for the contact monitor (distance.h): a rod's axis, a plate's
   // mid-plane, a `geometry:` key, or a flexible body's mesh; null if none.
   std::shared_ptr<const BodyGeometry> geometry;
+  // Its broad-phase tree (contact_tree.h), built for the bodies the monitor names.
+  std::shared_ptr<const BoundingTree> geometry_tree;
   // Stress recovery (`outputs: {stresses: [...]}`, stress_recovery.h): set only
   // for the bodies named there; null costs nothing.
   std::shared_ptr<const BodyStressRecovery> stress;

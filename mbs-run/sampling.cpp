@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <stdexcept>
 
+#include "mbs-run/contact_tree.h"
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/stress_recovery.h"
 
@@ -72,13 +75,19 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
       s.joints[j].limit_torque = rt.locked || rt.contact != 0 ? sys.holdingTorque(int(j)) : 0.0;
     }
   }
-  // Contact monitor: smallest distance between each named pair's geometry.
-  for (const auto& pr : m.distance_pairs) {
-    const BodyGeometry &ga = *m.bodies[pr[0]].geometry, &gb = *m.bodies[pr[1]].geometry;
-    const BodyPose &a = P[pr[0]], &b = P[pr[1]];
-    s.distances.push_back(geometryDistance(ga, placedVertices(ga, a.r, a.A, a.modal), gb,
-                                           placedVertices(gb, b.r, b.A, b.modal)));
-  }
+  // Contact monitor: smallest distance between each named pair's geometry
+  // (broad phase, contact_tree.h); each body placed once for all its pairs.
+  std::vector<std::unique_ptr<PlacedGeometry>> placed(m.bodies.size());
+  auto place = [&](int k) -> PlacedGeometry& {
+    if (!placed[k]) {
+      const Body& b = m.bodies[k];
+      if (!b.geometry || !b.geometry_tree)
+        throw std::logic_error("contact monitor: body '" + b.name + "' has no geometry tree (parseOutputs builds it)");
+      placed[k] = std::make_unique<PlacedGeometry>(*b.geometry, *b.geometry_tree, P[k].r, P[k].A, P[k].modal);
+    }
+    return *placed[k];
+  };
+  for (const auto& pr : m.distance_pairs) s.distances.push_back(treeDistance(place(pr[0]), place(pr[1])));
   s.energy = sys.energies(t, y);
   s.violation = sys.constraintViolation(t, y);
   return s;

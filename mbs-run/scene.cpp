@@ -4,6 +4,7 @@
 #include <set>
 
 #include "common/rotations.h"
+#include "mbs-run/contact_tree.h"
 #include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/rigid_body.h"
 #include "mbs-run/stress_recovery.h"
@@ -558,6 +559,7 @@ void parseOutputs(const InputNode& o, Model& m) {
       if (!b.geometry)
         p.at(i).fail("body '" + b.name + "' has no geometry: give it `geometry: {segment: [[x, y, z], [x, y, z]]}` or "
                      "`geometry: {rectangle: [length, width]}` (rod and plate bodies and flexible bodies have one)");
+      if (!b.geometry_tree) b.geometry_tree = std::make_shared<BoundingTree>(buildBoundingTree(*b.geometry));
     }
     m.distance_pairs.push_back(pair);
   }
