@@ -68,7 +68,11 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     s.joints[j].reaction_force = reac[j].force;
     s.joints[j].reaction_torque = reac[j].torque;
-    s.joints[j].angle = m.joints[j].type == JointType::Revolute ? sys.jointAngle(int(j), y) : 0.0;
+    // The angle at the poses already taken (System::jointAngle would take
+    // them again for every joint: O(N^2) per row on a chain of N).
+    const Joint& jt = m.joints[j];
+    s.joints[j].angle =
+        jt.type == JointType::Revolute ? revoluteAngle(jt, sys.jointRuntime(int(j)), P[jt.body_i], P[jt.body_j]) : 0.0;
     if (m.joints[j].limits.any()) {  // reads the multipliers reactions() left
       const JointRuntime& rt = sys.jointRuntime(int(j));
       s.joints[j].limit_state = rt.locked ? 2 : rt.contact;

@@ -63,11 +63,13 @@ def exudyn_chain(exu, n):
 
 
 def exudyn_eval_ms(exu, n):
-    """CPU of one evaluation of Exudyn's kinematic tree: the difference of 3
-    and 1 fixed RK4 steps (8 evaluations), which removes the set-up."""
+    """CPU of one evaluation of Exudyn's kinematic tree: the difference of
+    1 + k and 1 fixed RK4 steps (4 k evaluations), which removes the set-up;
+    k = 2e5 / N^2 (at least 2) keeps the timed part near 0.1-1 s."""
     SC, mbs, node = exudyn_chain(exu, n)
+    k = max(2, int(2e5 / n**2))
     cpu = []
-    for steps in (1, 3):
+    for steps in (1, 1 + k):
         ss = exu.SimulationSettings()
         ti = ss.timeIntegration
         ti.endTime = 1e-5 * steps
@@ -81,7 +83,7 @@ def exudyn_eval_ms(exu, n):
         c0 = time.process_time()
         mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.RK44)
         cpu.append(time.process_time() - c0)
-    return 1e3 * (cpu[1] - cpu[0]) / 8
+    return 1e3 * (cpu[1] - cpu[0]) / (4 * k)
 
 
 def exudyn_run(exu, n, t_end, rtol):
