@@ -89,19 +89,25 @@ double tipErrorAgainstLagrange(const Results& r) {
   return worst;
 }
 
+// Both formulations (docs/mbs-run.md, Formulation): auto runs this open
+// chain in joint coordinates, constrained in Cartesian ones.
 TEST(DoublePendulum, MatchesMinimalCoordinateLagrangeSolution) {
-  const Model model = sceneFromText(pendulumScene(1e-10, 1e-13));
-  const Results r = simulate(model, {true});
-  ASSERT_EQ(r.status, "completed");
+  for (Formulation f : {Formulation::Constrained, Formulation::Tree}) {
+    Model model = sceneFromText(pendulumScene(1e-10, 1e-13));
+    model.settings.formulation = f;
+    const Results r = simulate(model, {true});
+    ASSERT_EQ(r.status, "completed");
+    EXPECT_EQ(r.formulation.substr(0, 4), f == Formulation::Tree ? "tree" : "cons");
 
-  const double worst = tipErrorAgainstLagrange(r);
-  // The motion is chaotic (largest Lyapunov exponent a few 1/s), so errors of
-  // order rtol = 1e-10 grow by ~e^(3 * 3) ~ 1e4 over 3 s: 1e-5 m is the bound a
-  // correct engine meets; a wrong term in M or Q_v gives errors of order 0.1 m.
-  std::printf("[   info   ] tip error vs Lagrange/RK4: %.3e m, violation %.3e, %ld steps\n", worst,
-              r.max_violation, r.steps);
-  EXPECT_LT(worst, 1e-5);
-  EXPECT_LT(r.max_violation, 1e-8);
+    const double worst = tipErrorAgainstLagrange(r);
+    // The motion is chaotic (largest Lyapunov exponent a few 1/s), so errors of
+    // order rtol = 1e-10 grow by ~e^(3 * 3) ~ 1e4 over 3 s: 1e-5 m is the bound a
+    // correct engine meets; a wrong term in M or Q_v gives errors of order 0.1 m.
+    std::printf("[   info   ] %s: tip error vs Lagrange/RK4: %.3e m, violation %.3e, %ld steps\n",
+                r.formulation.c_str(), worst, r.max_violation, r.steps);
+    EXPECT_LT(worst, 1e-5);
+    EXPECT_LT(r.max_violation, 1e-8);
+  }
 }
 
 // The two ways of applying (M + a Phi^T Phi)^-1 give the same motion: their
@@ -109,7 +115,9 @@ TEST(DoublePendulum, MatchesMinimalCoordinateLagrangeSolution) {
 // (first test), so 1e-9 m leaves room above 1e-16 x 1e4 and is far below
 // any modelling or integration error.
 TEST(DoublePendulum, SchurAndSparseSolversAgree) {
-  Model a = sceneFromText(pendulumScene(1e-8, 1e-11)), b = a;
+  Model a = sceneFromText(pendulumScene(1e-8, 1e-11));
+  a.settings.formulation = Formulation::Constrained;  // the solvers of the constrained path
+  Model b = a;
   a.settings.linear_solver = AlMethod::BlockSchur;
   b.settings.linear_solver = AlMethod::SparseLdlt;
   const Results ra = simulate(a, {true}), rb = simulate(b, {true});
@@ -131,7 +139,8 @@ TEST(DoublePendulum, LooseToleranceProjectsOnlyVisibleDrift) {
   // atol above rtol |q|: the drift a step leaves (~rtol |q|) is then mostly
   // below the projection threshold.
   const double rtol = 1e-6, atol = 1e-4;
-  const Model model = sceneFromText(pendulumScene(rtol, atol));
+  Model model = sceneFromText(pendulumScene(rtol, atol));
+  model.settings.formulation = Formulation::Constrained;  // projections are the constrained path's
   const Results r = simulate(model, {true});
   ASSERT_EQ(r.status, "completed");
   const long attempts = r.steps + r.rejected_steps;
