@@ -333,6 +333,15 @@ TEST(KinematicTree, DeclinesWhatItDoesNotSupport) {
   EXPECT_EQ(r.formulation, "constrained (joint J1 has stops)");
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_NE(r.warnings.back().find("formulation: tree is not possible here (joint J1 has stops)"), std::string::npos);
+  // An unknown value is an input error naming the key and the choices.
+  try {
+    sceneFromText(planarChain(2, "{t_end: 0.1, formulation: minimal}"));
+    ADD_FAILURE() << "formulation: minimal was accepted";
+  } catch (const fc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected auto, tree or constrained, got 'minimal'"), std::string::npos)
+        << e.what();
+    EXPECT_NE(e.keyPath().find("formulation"), std::string::npos) << e.keyPath();
+  }
 }
 
 }  // namespace
