@@ -93,7 +93,8 @@ def load_shapes(scene_path, visuals):
         if "flexible" in b:
             fl = b["flexible"]
             path = fl["file"] if os.path.isabs(fl["file"]) else os.path.join(base, fl["file"])
-            shapes[name] = BodyShape.from_body_file(name, path, int(fl.get("modes", 0)))
+            modes = fl.get("modes", 0)  # "all": every mode of the file (Craig-Bampton bodies)
+            shapes[name] = BodyShape.from_body_file(name, path, 1 << 30 if modes == "all" else int(modes))
         elif name in visuals:
             shapes[name] = BodyShape.from_body_file(name, visuals[name], 0)
         else:
