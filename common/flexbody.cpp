@@ -48,7 +48,7 @@ void writeArray(H5File& f, const std::string& path, const std::vector<hsize_t>& 
   bool empty = false;
   for (hsize_t d : dims) empty = empty || d == 0;
   if (set.id < 0 || (!empty && H5Dwrite(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
-    throw H5Error(f.path() + ": cannot write dataset " + path);
+    throw H5Error(f.path() + ": cannot write dataset " + path + hdf5ErrorReason());
 }
 
 std::string dimsText(const std::vector<hsize_t>& d) {

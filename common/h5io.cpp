@@ -361,7 +361,7 @@ void writeAttribute(hid_t file, const std::string& fname, const std::string& obj
   Handle attr(H5Acreate2(obj.get(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
               H5Aclose);
   if (!attr.ok() || H5Awrite(attr.get(), type, data) < 0)
-    throw H5Error(fname + ": cannot write attribute " + name + " on " + object_path);
+    throw H5Error(fname + ": cannot write attribute " + name + " on " + object_path + hdf5ErrorReason());
 }
 }  // namespace
 

@@ -185,16 +185,32 @@ void InputNode::fail(const std::string& message) const {
   throw InputError(file(), line(), column(), path_, message);
 }
 
+// A key written without a value (`static_correction:` or `key: ~`) is an error at
+// that key, not an absent key: read as absent, an optional key silently took its
+// default (the fuzzer's `static_correction: null` built a body without the
+// correction, exit 0). Every optional key is read through has() or get().
+void InputNode::failIfValueless(const std::string& key) const {
+  if (!node_.IsMap()) return;
+  const YAML::Node child = node_[key];
+  if (!child || !child.IsNull()) return;
+  const YAML::Mark m = child.Mark();
+  const bool located = m.line >= 0;
+  throw InputError(file(), located ? m.line + 1 : line(), located ? m.column + 1 : column(),
+                   path_.empty() ? key : path_ + "." + key,
+                   "the key is given without a value; expected a value (remove the key to use its default)");
+}
+
 bool InputNode::has(const std::string& key) const {
-  return node_.IsMap() && node_[key] && !node_[key].IsNull();
+  failIfValueless(key);
+  return node_.IsMap() && node_[key];
 }
 
 InputNode InputNode::operator[](const std::string& key) const {
   const std::string child_path = path_.empty() ? key : path_ + "." + key;
   if (!node_.IsMap()) fail("expected a map with key '" + key + "', got " + describe(node_));
+  failIfValueless(key);
   YAML::Node child = node_[key];
-  if (!child || child.IsNull())
-    throw InputError(file(), line(), column(), child_path, "missing required key '" + key + "'");
+  if (!child) throw InputError(file(), line(), column(), child_path, "missing required key '" + key + "'");
   return InputNode(child, file_, child_path);
 }
 

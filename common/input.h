@@ -48,7 +48,7 @@ class InputNode {
   bool isScalar() const { return node_.IsScalar(); }
   bool isNull() const { return !node_ || node_.IsNull(); }
 
-  bool has(const std::string& key) const;
+  bool has(const std::string& key) const;  // present; a key without a value is an error at it
   // Required child: an InputError "missing key" if absent.
   InputNode operator[](const std::string& key) const;
   std::optional<InputNode> get(const std::string& key) const;
@@ -93,6 +93,7 @@ class InputNode {
   std::shared_ptr<const std::string> fileHandle() const { return file_; }
 
  private:
+  void failIfValueless(const std::string& key) const;
   YAML::Node node_;
   std::shared_ptr<const std::string> file_;
   std::string path_;

@@ -10,6 +10,14 @@
 namespace fc::feprep {
 namespace {
 
+// Lengths in SI units (InputNode::asLength: beyond these a value is a unit mistake).
+// A 1e6 m beam was accepted and failed only when its inertia was checked on write,
+// an error naming the body but no key (fuzz campaign, session 6). Sections as in
+// section-prep (1 um .. 100 m); bodies up to 10 km.
+constexpr double kMinLength = 1e-6;
+constexpr double kMaxSectionLength = 100.0;
+constexpr double kMaxBodyLength = 1e4;
+
 const char* const kEdges[] = {"edge_xmin", "edge_xmax", "edge_ymin", "edge_ymax"};
 const char* const kEnds[] = {"end_min", "end_max"};
 
@@ -45,7 +53,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     shell.plies = plyTable(it->second, materials);
   } else if (s.has("material")) {
     const Material& m = lookupMaterial(materials, s["material"]);
-    const double t = s["thickness"].asPositive();
+    const double t = s["thickness"].asLength(1e-7, 1.0);  // as a ply (common/laminate.cpp)
     shell.laminate = laminateStiffness(homogeneousLaminate(m.name, t), materials, kappa);
     shell.laminate_name = m.name;
     shell.plies = plyTable(homogeneousLaminate(m.name, t), materials);
@@ -72,7 +80,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     if (n < 2) mesh["triangles"].fail("expected at least 2 triangles, got " + std::to_string(n));
     shell.triangles = n;
   }
-  if (mesh.has("size")) shell.size = mesh["size"].asPositive();
+  if (mesh.has("size")) shell.size = mesh["size"].asLength(kMinLength, kMaxBodyLength);
 
   if (mesh.has("file")) {
     if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
@@ -90,8 +98,8 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
   } else {
     const InputNode r = s["rectangle"];
     r.allowKeys({"length", "width"});
-    shell.length = r["length"].asPositive();
-    shell.width = r["width"].asPositive();
+    shell.length = r["length"].asLength(kMinLength, kMaxBodyLength);
+    shell.width = r["width"].asLength(kMinLength, kMaxBodyLength);
     if (shell.triangles == 0 && shell.size == 0.0)
       mesh.fail("expected triangles: N (approximate count) or size: H (element size)");
   }
@@ -101,7 +109,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
 BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpec& body) {
   b.allowKeys({"length", "section", "elements"});
   BeamSpec beam;
-  beam.length = b["length"].asPositive();
+  beam.length = b["length"].asLength(kMinLength, kMaxBodyLength);
   if (b.has("elements")) {
     beam.elements = b["elements"].asInt();
     if (beam.elements < 1) b["elements"].fail("expected a positive number of elements");
@@ -134,20 +142,22 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
   if (kind == "solid_circle") {
     sec.allowKeys({"shape", "diameter", "material"});
     const Material& m = isotropicMaterial(materials, sec["material"]);
-    s = solidCircleSection(sec["diameter"].asPositive(), m.E1, m.nu12, m.rho);
+    s = solidCircleSection(sec["diameter"].asLength(kMinLength, kMaxSectionLength), m.E1, m.nu12, m.rho);
   } else if (kind == "tube") {
     sec.allowKeys({"shape", "outer_diameter", "wall", "material"});
     const InputNode wall = sec["wall"];
     wall.allowKeys({"thickness", "material"});
     const InputNode mat = wall.has("material") ? wall["material"] : sec["material"];
     const Material& m = isotropicMaterial(materials, mat);
-    const double D = sec["outer_diameter"].asPositive(), t = wall["thickness"].asPositive();
+    const double D = sec["outer_diameter"].asLength(kMinLength, kMaxSectionLength),
+                 t = wall["thickness"].asLength(kMinLength, kMaxSectionLength);
     if (2 * t >= D) wall["thickness"].fail("wall thickness must be less than half the outer diameter");
     s = tubeSection(D, t, m.E1, m.nu12, m.rho);
   } else if (kind == "rectangle") {
     sec.allowKeys({"shape", "width", "height", "material"});
     const Material& m = isotropicMaterial(materials, sec["material"]);
-    s = rectangleSection(sec["width"].asPositive(), sec["height"].asPositive(), m.E1, m.nu12, m.rho);
+    s = rectangleSection(sec["width"].asLength(kMinLength, kMaxSectionLength),
+                         sec["height"].asLength(kMinLength, kMaxSectionLength), m.E1, m.nu12, m.rho);
   } else {
     shape.fail("unknown inline section shape '" + kind +
                "', expected solid_circle, tube or rectangle (or section: {file: SECTION.h5} from section-prep)");
@@ -205,7 +215,7 @@ BodySpec parseBodySpec(const InputNode& root) {
         if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
         if (nodes.has("within")) {
           i.select = PatchSelect::Within;
-          i.within = nodes["within"].asPositive();
+          i.within = nodes["within"].asLength(1e-9, kMaxBodyLength);
         } else if (nodes.has("edge")) {
           i.select = PatchSelect::Edge;
           i.edge = nodes["edge"].asString();

@@ -150,8 +150,12 @@ void appendRows(hid_t d, const Channel& c, const std::string& file, unsigned lon
     ok = fspace >= 0 && mspace >= 0 &&
          H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0 &&
          H5Dwrite(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    // Read the reason before H5Sclose: every HDF5 call clears the error stack, and a
+    // full disk was reported as "cannot write /bodies/p/ply_stress" without its errno.
+    const std::string reason = ok ? std::string() : fc::hdf5ErrorReason();
     if (mspace >= 0) H5Sclose(mspace);
     if (fspace >= 0) H5Sclose(fspace);
+    if (!ok) throw OutputError(file + ": cannot write /" + c.name + reason);
   }
   if (!ok) throw OutputError(file + ": cannot write /" + c.name + fc::hdf5ErrorReason());
 }

@@ -15,7 +15,23 @@ using Eigen::Vector3d;
 
 namespace {
 
-Vector3d vec3(const InputNode& n) { return n.asVector(3); }
+// Scene vectors in SI units, bounded: beyond these magnitudes a value is a unit
+// mistake, and its squares and products overflow the dynamics. The fuzzer's
+// 1e300 N force made every reaction infinite (refused only when the results
+// were written, an error naming no key); a body placed 1e9 m from its joints
+// integrated for ever behind 1e20 N reactions.
+constexpr double kMaxLength = 1e6;  // m (1000 km: beyond any mechanism's scene)
+constexpr double kMaxLoad = 1e12;   // N, N m
+constexpr double kMaxSpeed = 1e6;   // m/s, rad/s
+constexpr double kMaxGravity = 1e6; // m/s^2 (1e5 g, beyond any centrifuge)
+
+Vector3d vec3(const InputNode& n, double limit, const char* unit) {
+  const Vector3d v = n.asVector(3);
+  if (v.cwiseAbs().maxCoeff() > limit)  // the limits are powers of ten: "1e12"
+    n.fail("expected components within 1e" + std::to_string(std::lround(std::log10(limit))) + " " + unit +
+           " (SI units; beyond that is a unit mistake)");
+  return v;
+}
 
 // Body and joint names become HDF5 group names in the results (/bodies/NAME,
 // /joints/NAME): refuse the ones HDF5 would read as a path, here at their key.
@@ -62,7 +78,7 @@ void parseInertia(const InputNode& b, Body& body) {
     const InputNode r = b["rigid"];
     r.allowKeys({"mass", "center_of_mass", "inertia"});
     body.mass = r["mass"].asPositive();
-    body.com = r.has("center_of_mass") ? vec3(r["center_of_mass"]) : Vector3d::Zero();
+    body.com = r.has("center_of_mass") ? vec3(r["center_of_mass"], kMaxLength, "m") : Vector3d::Zero();
     body.inertia_com = inertiaMatrix(r["inertia"]);
     return;
   }
@@ -108,8 +124,8 @@ Body parseBody(const InputNode& b) {
       const InputNode sgm = g["segment"];
       if (!sgm.isSequence() || sgm.size() != 2) sgm.fail("expected two end points [[x, y, z], [x, y, z]] (body frame)");
       geo->vertices.resize(3, 2);
-      geo->vertices.col(0) = vec3(sgm.at(0));
-      geo->vertices.col(1) = vec3(sgm.at(1));
+      geo->vertices.col(0) = vec3(sgm.at(0), kMaxLength, "m");
+      geo->vertices.col(1) = vec3(sgm.at(1), kMaxLength, "m");
       geo->segments.push_back({0, 1});
     } else {
       const Eigen::VectorXd lw = g["rectangle"].asVector(2);
@@ -120,7 +136,7 @@ Body parseBody(const InputNode& b) {
   }
   body.fixed = b.flag("fixed", false);
   if (body.fixed && body.flex) b["fixed"].fail("a flexible body cannot be fixed: use a rigid body, or clamp it with a fixed joint");
-  if (b.has("position")) body.position = vec3(b["position"]);
+  if (b.has("position")) body.position = vec3(b["position"], kMaxLength, "m");
   if (b.has("orientation")) {
     const Eigen::VectorXd p = b["orientation"].asVector(4);
     const double n = p.norm();
@@ -128,8 +144,8 @@ Body parseBody(const InputNode& b) {
       b["orientation"].fail("expected unit Euler parameters [e0, e1, e2, e3], got norm " + std::to_string(n));
     body.orientation = Eigen::Vector4d(p / n);
   }
-  if (b.has("velocity")) body.velocity = vec3(b["velocity"]);
-  if (b.has("angular_velocity")) body.angular_velocity = vec3(b["angular_velocity"]);
+  if (b.has("velocity")) body.velocity = vec3(b["velocity"], kMaxSpeed, "m/s");
+  if (b.has("angular_velocity")) body.angular_velocity = vec3(b["angular_velocity"], kMaxSpeed, "rad/s");
   if (body.fixed && (body.velocity.norm() > 0 || body.angular_velocity.norm() > 0))
     b.fail("a fixed body cannot have an initial velocity");
   // One value per mode used (`modes:` of the flexible entry), in the file's order; zero if absent.
@@ -181,7 +197,7 @@ Vector3d pointRef(const Model& m, int body, const InputNode& n, PointShapes& sha
     shapes.theta = mk.Theta;
     return mk.s0;
   }
-  return vec3(n);
+  return vec3(n, kMaxLength, "m");
 }
 
 JointType jointType(const InputNode& n) {
@@ -305,11 +321,7 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
   if (type == "gravity") {
     f.allowKeys({"name", "type", "g", "enabled"});
     fe.type = ForceType::Gravity;
-    fe.vector = vec3(f["g"]);
-    // 1e6 m/s^2 is 1e5 g, beyond any centrifuge: a larger value is a unit mistake, and
-    // 1e300 made every reaction force infinite, refused only when the file was written.
-    if (fe.vector.cwiseAbs().maxCoeff() > 1e6)
-      f["g"].fail("expected components within 1e6 m/s^2 (SI units; beyond that is a unit mistake)");
+    fe.vector = vec3(f["g"], kMaxGravity, "m/s^2");
   } else if (type == "rotational_spring_damper") {
     f.allowKeys({"name", "type", "joint", "damping", "torque", "enabled"});
     fe.type = ForceType::RotationalSpringDamper;
@@ -346,12 +358,12 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
       fe.shapes_i.psi = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);
       fe.shapes_i.theta = Eigen::MatrixXd::Zero(3, m.bodies[fe.body_i].modes);
     }
-    fe.vector = vec3(f["force"]);
+    fe.vector = vec3(f["force"], kMaxLoad, "N");
   } else if (type == "torque") {
     f.allowKeys({"name", "type", "body", "torque", "enabled"});
     fe.type = ForceType::ConstantTorque;
     fe.body_i = bodyRef(m, f["body"]);
-    fe.vector = vec3(f["torque"]);
+    fe.vector = vec3(f["torque"], kMaxLoad, "N m");
   } else {
     const std::string hint =
         closestMatch(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "force", "torque"});
@@ -489,9 +501,10 @@ void parseSimulation(const InputNode& s, Settings& st) {
 
 template <class F>
 void forEachEntry(const InputNode& root, const char* key, F&& f) {
+  // `joints:` written empty is an empty list (has() refuses other valueless keys).
+  if (root.isMap() && root.raw()[key] && root.raw()[key].IsNull()) return;
   if (!root.has(key)) return;
   const InputNode list = root[key];
-  if (list.isNull()) return;
   if (!list.isSequence()) list.fail(std::string("expected a list of ") + key);
   for (std::size_t k = 0; k < list.size(); ++k) f(list.at(k), static_cast<int>(k));
 }
@@ -553,6 +566,11 @@ void parseOutputs(const InputNode& o, Model& m) {
     if (!p.isSequence() || p.size() != 2) p.fail("expected a pair of body names [A, B]");
     std::array<int, 2> pair{bodyRef(m, p.at(0)), bodyRef(m, p.at(1))};
     if (pair[0] == pair[1]) p.fail("expected two different bodies");
+    // Each pair is one results group /distances/A-B: a repeat was refused only
+    // when the file was written ("cannot create /distances/h2-d", no key named).
+    for (const auto& q : m.distance_pairs)
+      if ((q[0] == pair[0] && q[1] == pair[1]) || (q[0] == pair[1] && q[1] == pair[0]))
+        p.fail("the pair " + m.bodies[pair[0]].name + "-" + m.bodies[pair[1]].name + " is listed twice");
     for (int i = 0; i < 2; ++i) {
       Body& b = m.bodies[pair[i]];
       if (!b.geometry && b.flex) b.geometry = meshGeometry(b, p.at(i));

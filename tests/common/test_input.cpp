@@ -30,6 +30,24 @@ TEST(Input, MissingKeyNamesParentLineAndPath) {
   EXPECT_NE(std::string(e.what()).find("b.yaml:4:"), std::string::npos) << e.what();
 }
 
+// A key written without a value was read as absent, so an optional key silently
+// took its default (fuzz, session 6: fe-prep's `static_correction: null` built a
+// body without the correction, exit 0). Now has(), get() and [] refuse it at the key.
+TEST(Input, KeyWithoutAValueIsAnErrorAtTheKey) {
+  auto root = InputNode::loadString("body:\n  name: x\n  modes: {count: 3, static_correction: }\n  mass: ~\n", "v.yaml");
+  const InputNode body = root["body"];
+  auto e = errorOf([&] { body["modes"].has("static_correction"); });
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.keyPath(), "body.modes.static_correction");
+  EXPECT_NE(e.message().find("without a value"), std::string::npos) << e.what();
+  e = errorOf([&] { body.get("mass"); });
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_EQ(e.keyPath(), "body.mass");
+  e = errorOf([&] { body["mass"]; });
+  EXPECT_NE(e.message().find("without a value"), std::string::npos) << e.what();
+  EXPECT_FALSE(body.has("reference"));  // absent stays absent
+}
+
 TEST(Input, BadNumberReportsItsOwnLine) {
   auto root = InputNode::loadString("x: 1\ny:\n  - 2\n  - abc\n", "n.yaml");
   auto e = errorOf([&] { root["y"].asVector(2); });

@@ -56,6 +56,35 @@ TEST(SceneErrors, GravityBeyondPhysicalRange) {
   expectError(kHead + "forces:\n  - {type: gravity, g: [0, 0, -1e300]}\n" + kSim,
               {6, "forces[0].g", "within 1e6 m/s^2"});
 }
+TEST(SceneErrors, VectorsBeyondPhysicalRange) {
+  // Fuzz campaign on the new keys (session 6): a 1e300 N force ran and then failed
+  // writing an infinite peak reaction (an error naming no key); a body 1e9 m from
+  // its joint integrated for ever. Every scene vector is bounded in SI units.
+  expectError(kHead + "forces:\n  - {type: force, body: arm, force: [0, 1e300, 0]}\n" + kSim,
+              {6, "forces[0].force", "within 1e12 N"});
+  expectError(kHead + "forces:\n  - {type: torque, body: arm, torque: [-1e13, 0, 0]}\n" + kSim,
+              {6, "forces[0].torque", "within 1e12 N m"});
+  expectError(kHead + "    position: [0, 1e9, 0]\n" + kSim, {5, "bodies[1].position", "within 1e6 m"});
+  expectError(kHead + "    angular_velocity: [0, 0, 1e7]\n" + kSim, {5, "bodies[1].angular_velocity", "within 1e6 rad/s"});
+  expectError(kHead + "joints:\n  - {name: J, type: spherical, bodies: [ground, arm], points: [[0,0,0],[0,0,-1.7e308]]}\n" +
+                  kSim,
+              {6, "joints[0].points[1]", "within 1e6 m"});
+}
+TEST(SceneErrors, DistancePairListedTwice) {
+  // Each pair is one results group: a repeat failed only when the file was written.
+  const std::string two = R"(  - {name: other, rod: {length: 1.0, diameter: 0.01, mass: 1.0}, position: [0, 1, 0]}
+)";
+  expectError(kHead + two + "outputs: {distances: [[arm, other], [other, arm]]}\n" + kSim,
+              {6, "outputs.distances[1]", "listed twice"});
+}
+TEST(SceneErrors, KeyWithoutAValue) {
+  // `max_step:` with nothing after it used to read as absent: the default was
+  // taken silently (fuzz: fe-prep's `static_correction: null`). An empty list
+  // (`events:`) stays an empty list.
+  expectError(kHead + "simulation: {t_end: 1.0, max_step: }\n", {5, "simulation.max_step", "without a value"});
+  expectError(kHead + "simulation:\n  t_end: 1.0\n  rtol: ~\n", {7, "simulation.rtol", "without a value"});
+  EXPECT_NO_THROW(sceneFromText(kHead + "events:\nforces:\n" + kSim));
+}
 TEST(SceneErrors, MissingMass) {
   expectError("bodies:\n  - name: b\n    rigid: {inertia: [[1,0,0],[0,1,0],[0,0,1]]}\n" + kSim,
               {3, "bodies[0].rigid", "mass"});
