@@ -62,6 +62,20 @@ std::string dimsText(const std::vector<hsize_t>& d) {
 // Reads the leading block [0, count_i) of each dimension of a float64 dataset whose
 // shape must be (>= count_0, ..., exactly count_i where exact[i]). Only that block
 // is transferred from the file.
+// No number of a body file (SI units, modes mass-normalised) comes near this; a
+// larger one is a damaged or foreign file. Finite 1e300 values passed the reader
+// and made the results' peak reaction force or failure index infinite, refused
+// only when the results were written (an error naming the temporary, not the body
+// file: fuzz campaign on the new datasets, session 6).
+constexpr double kMaxBodyNumber = 1e30;
+const char* const kBeyondBodyNumbers = ", beyond 1e30: no body's number is that large (a damaged or foreign file)";
+
+std::string magnitudeText(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 std::vector<double> readLeading(const H5File& f, const std::string& path,
                                 const std::vector<hsize_t>& count,
                                 const std::vector<bool>& exact) {
@@ -88,12 +102,16 @@ std::vector<double> readLeading(const H5File& f, const std::string& path,
     if (!std::isfinite(out[i]))
       throw H5Error(f.path() + ": dataset " + path + " holds a non-finite value (" +
                     std::to_string(out[i]) + " at flat index " + std::to_string(i) + ")");
+    else if (std::abs(out[i]) > kMaxBodyNumber)
+      throw H5Error(f.path() + ": dataset " + path + " holds " + magnitudeText(out[i]) + " at flat index " +
+                    std::to_string(i) + kBeyondBodyNumbers);
   return out;
 }
 
 double finiteScalar(const H5File& f, const std::string& path) {
   const double v = f.readScalar(path);
   if (!std::isfinite(v)) throw H5Error(f.path() + ": " + path + " is not a finite number");
+  if (std::abs(v) > kMaxBodyNumber) throw H5Error(f.path() + ": " + path + " is " + magnitudeText(v) + kBeyondBodyNumbers);
   return v;
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "common/flexbody.h"
 #include "common/h5io.h"
@@ -311,5 +312,41 @@ TEST(FlexBodyHardening, NonFiniteOrWrongShapedDatasetsAreNamedOnRead) {
   } catch (const fc::H5Error& e) {
     EXPECT_NE(std::string(e.what()).find("/inertia/tensor"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+  }
+}
+
+// Finite but absurd numbers (1e300 in an interface position or in the stress
+// recovery strains, fuzz campaign on the new datasets) were read, and the run
+// failed only writing an infinite peak reaction or failure index, naming its
+// temporary file. The reader refuses them, naming the body file and the dataset.
+TEST(FlexBodyHardening, AbsurdlyLargeNumbersAreNamedOnRead) {
+  fc::FlexBody plate = lumpedPlate(2.0, 1.3, 0.002, 1610.0, Vector3d::Zero(), 4, 3);
+  fc::setRigidPropertiesFromLumpedMasses(plate);
+  const std::string path = tempPath("huge.h5");
+  fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
+  ASSERT_NO_THROW(fc::readFlexBody(path));
+  for (const char* set : {"/inertia/center_of_mass", "/invariants/mass"}) {
+    fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    const hid_t d = H5Dopen2(f, set, H5P_DEFAULT);
+    ASSERT_GE(d, 0) << set;
+    const hid_t space = H5Dget_space(d);
+    const hssize_t n = H5Sget_simple_extent_npoints(space);
+    ASSERT_GE(n, 1) << set;
+    std::vector<double> v(static_cast<std::size_t>(n));
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[0] = 1e300;
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+    try {
+      fc::readFlexBody(path);
+      ADD_FAILURE() << "1e300 in " << set << " was read";
+    } catch (const fc::H5Error& e) {
+      EXPECT_NE(std::string(e.what()).find(set), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("beyond 1e30"), std::string::npos) << e.what();
+    }
   }
 }
