@@ -8,12 +8,16 @@
 //   below atol / 10.
 // Limits: what the error control promises. Every accepted step's local error
 // is at most rtol |y| + atol (weighted norm), so
-// - energy: at most steps x rtol x the largest energy term of the run, the
-//   local errors all adding up (a run that loses accuracy to something the
-//   error estimate does not see - an unconverged Newton stage, a stale
-//   Jacobian, an instability - exceeds it by orders of magnitude);
-//   and never more than kMaxRelativeEnergyError of it (a blown-up run's
-//   largest energy term is its blow-up);
+// - energy: at most steps x (rtol x the largest energy term + atol x
+//   sum |g_i|), g = dE/dy over the state (System::energySensitivity): what
+//   the local errors allowed per step can do to E, all adding up. The atol
+//   part matters where E is still small but steep in the state: a 1 000-rod
+//   chain just released (0.48 J) whose rod heights may each be off by atol,
+//   1e-12 m x 0.98 N per rod and step (issue 17). A run that loses accuracy
+//   to something the error estimate does not see - an unconverged Newton
+//   stage, a stale Jacobian, an instability - exceeds it by orders of
+//   magnitude; and never more than kMaxRelativeEnergyError of the largest
+//   energy term (a blown-up run's largest energy term is its blow-up);
 // - violation: outputs are interpolated between projected steps, so their
 //   drift is the interpolant's error, at most 10 (atol + rtol L), L the
 //   largest body position of the run (1 m at least).

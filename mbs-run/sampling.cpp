@@ -93,6 +93,7 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   };
   for (const auto& pr : m.distance_pairs) s.distances.push_back(treeDistance(place(pr[0]), place(pr[1])));
   s.energy = sys.energies(t, y);
+  s.energy_sensitivity = sys.energySensitivity(t, y);
   s.violation = sys.constraintViolation(t, y);
   return s;
 }

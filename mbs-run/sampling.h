@@ -39,6 +39,7 @@ struct Sample {
   std::vector<BodySample> bodies;
   std::vector<JointSample> joints;
   Energies energy;
+  EnergySensitivity energy_sensitivity;  // for the run-quality allowance
   double violation = 0.0;  // largest position-level constraint violation
   std::vector<double> distances;  // contact monitor, per Model::distance_pairs [m]
 };

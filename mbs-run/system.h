@@ -29,6 +29,18 @@ struct Energies {
   double total() const { return kinetic + potential + strain + dissipated - applied_work; }
 };
 
+// How much an error in the state can change the energy balance
+// T + V + D - W, for the run-quality allowance (run_quality.h): with g_i =
+// dE/dy_i over the state's components (momenta M v for the velocities,
+// applied and elastic generalised forces for the positions, 1 for the two
+// energy integrals), absolute = sum |g_i| [J per unit state error] and
+// relative = sum |g_i| |y_i| [J]: a local error e_i <= rtol |y_i| + atol
+// changes E by at most rtol relative + atol absolute (run_quality.cpp uses
+// the absolute part; docs/mbs-run.md, "Run quality").
+struct EnergySensitivity {
+  double absolute = 0.0, relative = 0.0;
+};
+
 struct JointReaction {
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
 };
@@ -72,6 +84,7 @@ class System {
   std::string nonFiniteCause(double t, const Eigen::VectorXd& y);
 
   Energies energies(double t, const Eigen::VectorXd& y) const;
+  EnergySensitivity energySensitivity(double t, const Eigen::VectorXd& y) const;
   // Reaction force and torque (about the joint's point) on the first body of
   // each joint, global, from the multipliers; zero if disabled.
   std::vector<JointReaction> reactions(double t, const Eigen::VectorXd& y);
