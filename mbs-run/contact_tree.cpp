@@ -171,6 +171,11 @@ struct Search {
     const BoundingTree::Node &x = ta.nodes[na], &y = tb.nodes[nb];
     const bool leaf_a = x.left < 0, leaf_b = y.left < 0;
     if (leaf_a && leaf_b) {
+      Vector3d ca, ha, cb, hb;
+      a.leafBox(na, ca, ha);
+      b.leafBox(nb, cb, hb);
+      const double exact = in_a ? boxDistance(ca, ha, R * cb + t, absR * hb) : boxDistance(R * ca + t, absR * ha, cb, hb);
+      if (exact > best + margin) return;
       for (int i = x.first; i < x.first + x.count; ++i)
         for (int j = y.first; j < y.first + y.count; ++j)
           measure(ta.pieces[ta.items[i]].primitive, tb.pieces[tb.items[j]].primitive);
@@ -234,15 +239,47 @@ PlacedGeometry::PlacedGeometry(const BodyGeometry& g, const BoundingTree& tree, 
                                const Eigen::Matrix3d& A, const Eigen::VectorXd& w)
     : g_(g), tree_(tree), r_(r), A_(A), w_(w), absw_(w.cwiseAbs()),
       modal_(g.modal_displacement.size() && w.size() == g.modal_displacement.cols() && tree.mode_bound.size()),
-      v_(g.vertices.cols()), centre_(3, tree.nodes.size()), half_(3, tree.nodes.size()),
+      v_(g.vertices.cols()), local_(g.vertices.cols()), centre_(3, tree.nodes.size()), half_(3, tree.nodes.size()),
       placed_(g.vertices.cols(), 0), boxed_(tree.nodes.size(), 0) {}
 
-const Vector3d& PlacedGeometry::vertex(int k) {
+const Vector3d& PlacedGeometry::localVertex(int k) {
   if (!placed_[k]) {
-    v_[k] = placedVertex(g_, k, r_, A_, w_);
+    // placedVertex's arithmetic, its two halves kept.
+    local_[k] = deformedVertex(g_, k, w_);
+    v_[k] = A_ * local_[k] + r_;
     placed_[k] = 1;
   }
+  return local_[k];
+}
+
+const Vector3d& PlacedGeometry::vertex(int k) {
+  localVertex(k);
   return v_[k];
+}
+
+void PlacedGeometry::leafBox(int n, Vector3d& centre, Vector3d& half) {
+  const BoundingTree::Node& node = tree_.nodes[n];
+  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int i = node.first; i < node.first + node.count; ++i) {
+    const BoundingTree::Piece& pc = tree_.pieces[tree_.items[i]];
+    std::array<int, 3> v;
+    const int nv = primitiveVertices(g_, tree_, pc.primitive, v);
+    if (nv == 2) {  // the piece s0..s1 of the deformed segment
+      const Vector3d p = localVertex(v[0]), q = localVertex(v[1]);
+      for (const double s : {pc.s0, pc.s1}) {
+        const Vector3d x = p + s * (q - p);
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+      }
+    } else {
+      for (int k = 0; k < nv; ++k) {
+        lo = lo.cwiseMin(localVertex(v[k]));
+        hi = hi.cwiseMax(localVertex(v[k]));
+      }
+    }
+  }
+  centre = 0.5 * (lo + hi);
+  half = 0.5 * (hi - lo);
 }
 
 void PlacedGeometry::localBox(int n, Vector3d& centre, Vector3d& half) {

@@ -15,7 +15,11 @@
 // primitives. Two trees are descended together,
 // nearer box pairs first; a pair of nodes whose boxes are farther apart than
 // the best distance found so far is skipped, and only the leaves' primitive
-// pairs that survive are measured by the exact kernels. Vertices are placed
+// pairs that survive are measured by the exact kernels, after a last test of
+// the two leaves' boxes taken from their deformed vertices (no deflection
+// bound: a panel's leaf is then a slab as thin as its actual bending, so a
+// truss lying parallel above it is not measured against every triangle
+// within the bound of the minimum). Vertices are placed
 // on demand (placedVertex(), the arithmetic of placedVertices()), once per
 // sample per body.
 //
@@ -68,7 +72,10 @@ class PlacedGeometry {
                  const Eigen::VectorXd& w);
   const BodyGeometry& geometry() const { return g_; }
   const BoundingTree& tree() const { return tree_; }
-  const Eigen::Vector3d& vertex(int k);
+  const Eigen::Vector3d& vertex(int k);       // global frame
+  const Eigen::Vector3d& localVertex(int k);  // deformed, body frame
+  // Body-frame box of leaf n's deformed pieces, from their vertices (exact, no deflection bound).
+  void leafBox(int n, Eigen::Vector3d& centre, Eigen::Vector3d& half);
   // Body-frame box holding node n's deformed primitives (undeformed box grown by delta).
   void localBox(int n, Eigen::Vector3d& centre, Eigen::Vector3d& half);
   const Eigen::Vector3d& position() const { return r_; }
@@ -82,7 +89,7 @@ class PlacedGeometry {
   Eigen::Matrix3d A_;
   Eigen::VectorXd w_, absw_;
   bool modal_;
-  std::vector<Eigen::Vector3d> v_;
+  std::vector<Eigen::Vector3d> v_, local_;
   Eigen::Matrix3Xd centre_, half_;
   std::vector<char> placed_, boxed_;
 };

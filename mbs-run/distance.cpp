@@ -79,12 +79,16 @@ double segmentTriangleDistance(const Vector3d& p, const Vector3d& q, const Vecto
   return d;
 }
 
-Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Vector3d& r, const Eigen::Matrix3d& A,
-                      const Eigen::VectorXd& w) {
+Vector3d deformedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::VectorXd& w) {
   Vector3d x = g.vertices.col(k);
   if (g.modal_displacement.size() && w.size() == g.modal_displacement.cols())
     for (Eigen::Index j = 0; j < w.size(); ++j) x += g.modal_displacement.block<3, 1>(3 * k, j) * w[j];
-  return A * x + r;
+  return x;
+}
+
+Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Vector3d& r, const Eigen::Matrix3d& A,
+                      const Eigen::VectorXd& w) {
+  return A * deformedVertex(g, k, w) + r;
 }
 
 Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Vector3d& r, const Eigen::Matrix3d& A,

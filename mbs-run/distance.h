@@ -47,6 +47,8 @@ double segmentTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 // contact_tree.h, places single vertices with the same arithmetic).
 Eigen::Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
                              const Eigen::VectorXd& w);
+// Vertex k deformed, in the body frame: x_k + sum_j Phi_kj w_j (the first half of placedVertex).
+Eigen::Vector3d deformedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::VectorXd& w);
 // Every vertex placed (placedVertex).
 Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w);
