@@ -317,19 +317,26 @@ VectorXd AlSolver::multiplyM(const VectorXd& x) const {
   return y;
 }
 
-VectorXd AlSolver::solveS(const VectorXd& r) const {
+// x = S^-1 r (x must not alias r). The sparse path permutes through a kept
+// workspace and solves in place: nothing is allocated once the sizes are set
+// (it runs once per multiplier pass, several times per evaluation).
+void AlSolver::solveS(const VectorXd& r, VectorXd& x) const {
+  const Eigen::Index n = r.size();
   if (s_sparse_) {
-    VectorXd y(r.size());
-    for (Eigen::Index i = 0; i < r.size(); ++i) y[s_perm_[i]] = r[i];
-    y = s_sparse_ldlt_.solve(y);
-    VectorXd x(r.size());
-    for (Eigen::Index i = 0; i < r.size(); ++i) x[i] = y[s_perm_[i]];
-    return x;
+    s_work_.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) s_work_[s_perm_[i]] = r[i];
+    s_work_ = s_sparse_ldlt_.solve(s_work_);
+    x.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) x[i] = s_work_[s_perm_[i]];
+    return;
   }
-  if (s_use_ldlt_) return s_ldlt_.solve(r);
-  VectorXd x = s_L_.triangularView<Eigen::Lower>().solve(r);
+  if (s_use_ldlt_) {
+    x = s_ldlt_.solve(r);
+    return;
+  }
+  x = r;
+  s_L_.triangularView<Eigen::Lower>().solveInPlace(x);
   s_L_.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
-  return x;
 }
 
 // The two halves of M^-1 Phi^T-type products on the blocks: y <- L^-1 y per
@@ -363,9 +370,10 @@ void AlSolver::backwardBlocks(VectorXd& x, const VectorXd& z) const {
 VectorXd AlSolver::solve(const VectorXd& r) const {
   if (used_ == AlMethod::SparseLdlt) return ldlt_.solve(r);
   // x = L^-T (y - V z), y = L^-1 r, z = S^-1 Phi M^-1 r = S^-1 sum V^T y.
-  VectorXd x = r, u = VectorXd::Zero(Phi_.rows());
+  VectorXd x = r, u = VectorXd::Zero(Phi_.rows()), z;
   forwardBlocks(x, u);
-  backwardBlocks(x, u.size() ? solveS(u) : u);
+  if (u.size()) solveS(u, z);
+  backwardBlocks(x, u.size() ? z : u);
   return x;
 }
 
@@ -439,7 +447,8 @@ VectorXd AlSolver::iterateSchur(const VectorXd& b, const VectorXd& g, double tol
     x = yl;
     backwardBlocks(x, lam);
   };
-  VectorXd lam = m ? solveS(c) : VectorXd();
+  VectorXd lam, s_rhs(m);
+  if (m) solveS(c, lam);
   accelerationsFor(lam);
   VectorXd e = Phi_ * x + g;
   double r = m ? e.cwiseAbs().maxCoeff() : 0.0;
@@ -448,7 +457,8 @@ VectorXd AlSolver::iterateSchur(const VectorXd& b, const VectorXd& g, double tol
   VectorXd x_prev;
   while (k < max_it && m > 0) {
     x_prev = x;
-    lam = solveS(c + lam / a);
+    s_rhs = c + lam / a;
+    solveS(s_rhs, lam);
     accelerationsFor(lam);
     e = Phi_ * x + g;
     ++k;

@@ -182,7 +182,8 @@ class AlSolver {
   Eigen::SimplicialLDLT<SparseMatrixd, Eigen::Upper, Eigen::NaturalOrdering<int>> s_sparse_ldlt_;
   bool s_sparse_analysed_ = false;
   void buildSparsePattern();
-  Eigen::VectorXd solveS(const Eigen::VectorXd& r) const;
+  mutable Eigen::VectorXd s_work_;  // solveS's permuted right-hand side
+  void solveS(const Eigen::VectorXd& r, Eigen::VectorXd& x) const;
   Eigen::VectorXd iterateSchur(const Eigen::VectorXd& b, const Eigen::VectorXd& g, double tol, int max_it,
                                bool stop_on_stall, Eigen::VectorXd* mu_out, int* its, double* res) const;
 
