@@ -6,10 +6,13 @@
 //  N. the two forms of the flexible inertia's second-order terms per
 //     evaluation (flexible/nodal_inertia.h) on bodies moving along every
 //     axis, n nodes x nm modes: what nodalFormCheaper's rule is set from;
+//  S. dense against sparse joint-space Schur complement (linear_solver
+//     schur / sparse_schur) per evaluation on a flexible chain: where
+//     AlSolver's automatic switch (kMaxDenseSchurRows) should sit;
 //  B. the stiff beam pendulum (4 modes, first mode 145 Hz) at rtol 1e-6:
 //     real-time factor of `dopri5` and `imex`;
 // (Rigid chains, issue 17's third part: bench_chains.cpp.)
-// Usage: bench_integrators [A|N|B]... [modes] (all when none given; modes:
+// Usage: bench_integrators [A|N|S|B]... [modes] (all when none given; modes:
 // only that row of A, for profiling; "AE": A's per-evaluation rows only).
 #include <cmath>
 #include <cstdio>
@@ -149,6 +152,49 @@ void forms() {
     }
 }
 
+// Part S: a chain of N flexible beams (8 pinned-root modes, 10 elements),
+// tip of one pinned to the root of the next (revolute about z: 5 rows per
+// joint), per evaluation with each joint-space solver.
+void schurCrossover() {
+  std::printf("\n### S. Flexible chain: dense against sparse joint-space Schur complement per evaluation\n\n");
+  std::printf("| beams | constraint rows | dense S (schur) [us] | sparse S (sparse_schur) [us] | sparse / dense |\n|---|---|---|---|---|\n");
+  fc::mbs::test::BeamSpec bs;
+  bs.elements = 10;
+  bs.modes = 8;
+  bs.pinned_root = true;
+  const auto bm = fc::mbs::test::cantileverBeam(bs);
+  const std::string file = fc::mbs::test::writeBeam(bm, "bench_schur");
+  for (int n : {8, 16, 20, 24, 28, 32, 48}) {
+    double us[2];
+    int k = 0;
+    for (const char* solver : {"schur", "sparse_schur"}) {
+      std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+      std::string j = "joints:\n";
+      for (int b = 0; b < n; ++b) {
+        y += "  - {name: B" + std::to_string(b) + ", position: [" + std::to_string(b) +
+             ", 0, 0], flexible: {file: " + file + ", modes: 8}}\n";
+        j += "  - {name: J" + std::to_string(b) + ", type: revolute, bodies: [" +
+             (b ? "B" + std::to_string(b - 1) : std::string("ground")) + ", B" + std::to_string(b) + "], points: [" +
+             (b ? std::string("tip") : std::string("[0, 0, 0]")) + ", root], axes: [[0, 0, 1], [0, 0, 1]]}\n";
+      }
+      const fc::mbs::Model m = fc::mbs::test::sceneFromText(
+          y + j + "forces:\n  - {type: gravity, g: [0, -9.81, 0]}\nsimulation: {t_end: 1, linear_solver: " + solver + "}\n");
+      fc::mbs::System sys(m);
+      Eigen::VectorXd yv = sys.initialState(), yd;
+      sys.initializeJoints(yv);
+      sys.project(0.0, yv);
+      sys.derivative(0.0, yv, yd);
+      const int reps = std::max(50, 20000 / n);
+      const std::clock_t c = std::clock();
+      for (int r = 0; r < reps; ++r) sys.derivative(0.0, yv, yd);
+      us[k++] = 1e6 * double(std::clock() - c) / CLOCKS_PER_SEC / reps;
+    }
+    std::printf("| %d | %d | %.1f | %.1f | %.2f |\n", n, 5 * n, us[0], us[1], us[1] / us[0]);
+    std::fflush(stdout);
+  }
+  std::filesystem::remove(file);
+}
+
 void stiff() {
   std::printf("\n### B. Stiff beam pendulum (4 pinned-root modes, first mode 145 Hz), 1 s, rtol 1e-6\n\n");
   fc::mbs::test::BeamSpec s;
@@ -176,8 +222,9 @@ void stiff() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string which = argc > 1 ? argv[1] : "ANB";
+  const std::string which = argc > 1 ? argv[1] : "ANSB";
   if (which.find('A') != std::string::npos) modes(argc > 2 ? std::atoi(argv[2]) : 0, which.find('E') != std::string::npos);
   if (which.find('N') != std::string::npos) forms();
+  if (which.find('S') != std::string::npos) schurCrossover();
   if (which.find('B') != std::string::npos) stiff();
 }
