@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "mbs-run/run_summary.h"
 
@@ -52,6 +53,17 @@ std::string qualityStatus(const RunSummary& r, double rtol, double atol) {
   }
   if (s.empty()) return "completed";
   return "inaccurate: " + s + "; the answer is not within the tolerances asked (tighten rtol, or use dopri5)";
+}
+
+std::string stepFailure(double t, const std::string& integrator, double rtol, double atol) {
+  std::ostringstream s;
+  // The usual cause at tight tolerances: the error test (or TR-BDF2's Newton
+  // iteration) asks for more digits than f(y) carries (the multiplier
+  // iteration stops at a 1e-10 residual), so say what to change.
+  s << "solver failure: step size too small at t = " << t << " (" << integrator << ", rtol " << rtol << ", atol "
+    << atol << "): the error test cannot be met; at tight tolerances the right-hand side's"
+    << " precision is the limit - loosen rtol or use dopri5";
+  return s.str();
 }
 
 }  // namespace fc::mbs

@@ -43,4 +43,8 @@ QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol);
 // "inaccurate: ..." naming the check that failed, its value and its limit.
 std::string qualityStatus(const RunSummary& r, double rtol, double atol);
 
+// The status of a run whose step size underflowed at time t, with what to
+// change (both formulations, simulation.cpp and tree_simulation.cpp).
+std::string stepFailure(double t, const std::string& integrator, double rtol, double atol);
+
 }  // namespace fc::mbs

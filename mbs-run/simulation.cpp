@@ -123,18 +123,6 @@ bool projectDrift(System& sys, double t, VectorXd& y, double atol, bool always) 
   return project;
 }
 
-// The message of a step-size underflow.
-std::string stepFailure(double t, const Integrator& integ, const Settings& st, double atol) {
-  std::ostringstream s;
-  // The usual cause at tight tolerances: the error test (or TR-BDF2's Newton
-  // iteration) asks for more digits than f(y) carries (the multiplier
-  // iteration stops at a 1e-10 residual), so say what to change.
-  s << "solver failure: step size too small at t = " << t << " (" << integ.name() << ", rtol " << st.rtol
-    << ", atol " << atol << "): the error test cannot be met; at tight tolerances the right-hand side's"
-    << " precision is the limit - loosen rtol or use dopri5";
-  return s.str();
-}
-
 class SummarySink : public SampleSink {
  public:
   SummarySink(const Model& m, SampleSink& out, RunSummary& r) : m_(m), out_(out), r_(r) {}
@@ -248,7 +236,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       }
       Integrator& integ = methods.current();
       if (!integ.step(timed.limit(st.t_end))) {
-        R.status = stepFailure(t, integ, st, tol.atol);
+        R.status = stepFailure(t, integ.name(), st.rtol, tol.atol);
         break;
       }
       CrossingEvents::Hit hit = crossings.locate(sys, integ, t, y);

@@ -194,10 +194,7 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
       if (const int sig = fc::terminationSignal()) throw fc::Terminated(sig);
       Integrator& integ = methods->current();
       if (!integ.step(st.t_end)) {
-        std::ostringstream s;
-        s << "solver failure: step size too small at t = " << t << " (" << integ.name() << ", rtol " << st.rtol
-          << ", atol " << tol.atol << "): the error test cannot be met";
-        R.status = s.str();
+        R.status = stepFailure(t, integ.name(), st.rtol, tol.atol);
         break;
       }
       const double t_new = integ.t();
