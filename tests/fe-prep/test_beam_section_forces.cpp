@@ -132,10 +132,16 @@ TEST(BeamSectionForces, CantileverUnderTipLoadConvergesWithModesAndIsExactWithAl
   }
   // The clamp's reaction on the ground: the tip force and its moment about the
   // clamp, L e_x x (-P e_z) = P L e_y, passed on to the ground.
+  // The torque is the multiplier of the state's own solve, so it also carries
+  // the residual motion of the stiff modes (to 2.7e4 Hz) that the section
+  // forces at the midpoints do not: measured at settled rows 2e-10..1.1e-6
+  // of P L with dopri5, imex, trbdf2 and rtol 1e-8..1e-10 (it follows the
+  // step sequence, not rtol; docs/validation.md). 5e-6 of P L stays far below
+  // what a wrong lever or frame would give (the deflection ratio, 2e-4).
   EXPECT_NEAR(all.reaction.z(), -kP, 1e-6 * kP);
-  EXPECT_NEAR(all.reaction_torque.y(), kP * kL, 1e-6 * kP * kL) << all.reaction_torque.transpose();
-  EXPECT_NEAR(all.reaction_torque.x(), 0.0, 1e-6 * kP * kL);
-  EXPECT_NEAR(all.reaction_torque.z(), 0.0, 1e-6 * kP * kL);
+  EXPECT_NEAR(all.reaction_torque.y(), kP * kL, 5e-6 * kP * kL) << all.reaction_torque.transpose();
+  EXPECT_NEAR(all.reaction_torque.x(), 0.0, 5e-6 * kP * kL);
+  EXPECT_NEAR(all.reaction_torque.z(), 0.0, 5e-6 * kP * kL);
   // The summary's peak: the element next to the clamp, P (L - L/20) (the
   // step response overshoots nothing with critical damping).
   EXPECT_EQ(all.peak_element, 0);
