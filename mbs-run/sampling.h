@@ -65,18 +65,25 @@ class SampleSink {
 // modal coordinates and every quantity they move.
 std::vector<std::string> samplingWarnings(const Model& m);
 
-// Output times k * output_step up to t_end.
+// Output times: k * output_step up to t_end, and t_end.
 class OutputClock {
  public:
   OutputClock(double output_step, double t_end) : step_(output_step), t_end_(t_end) {}
-  double next() const { return index_ * step_; }
-  // True while the next output time lies within a step ending at t_new.
-  bool dueBy(double t_new) const {
-    return index_ * step_ <= t_new + 1e-12 * std::max(1.0, t_new) && next() <= t_end_ + 1e-12;
+  // Multiples of output_step up to t_end, then t_end itself when it is not
+  // one: a run always writes its final state (t_end 1 s with output_step
+  // 0.3 s gives 0, 0.3, 0.6, 0.9, 1; output_step beyond t_end gives 0, t_end).
+  double next() const {
+    const double t = index_ * step_;
+    return t > t_end_ + slack(t_end_) ? t_end_ : t;
   }
+  // True while the next output time lies within a step ending at t_new.
+  bool dueBy(double t_new) const { return !finished() && next() <= t_new + slack(t_new); }
   void advance() { ++index_; }
 
  private:
+  static double slack(double t) { return 1e-12 * std::max(1.0, t); }
+  // The last row written was t_end (or the multiple that coincides with it).
+  bool finished() const { return index_ > 0 && (index_ - 1) * step_ >= t_end_ - slack(t_end_); }
   double step_, t_end_;
   long index_ = 0;
 };

@@ -2,6 +2,8 @@
 // stopped by a signal still writes a valid file whose status says why.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -25,6 +27,37 @@ simulation: {t_end: 1.0, output_step: 0.1, rtol: 1.0e-8}
 
 std::string tmpPath(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("mbs_test_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+// A run writes its final state even when t_end is not a multiple of
+// output_step (it used to stop at the last multiple: output_step 0.5 s with
+// t_end 0.004 s wrote the initial row only), on both formulations.
+TEST(ResultsFile, FinalStateIsWrittenWhenTEndIsNotAMultipleOfTheOutputStep) {
+  for (const char* formulation : {"tree", "constrained"}) {
+    auto run = [&](const char* step) {
+      std::string scene = kScene;
+      const std::string sim = "simulation: {t_end: 1.0, output_step: 0.1, rtol: 1.0e-8}";
+      scene.replace(scene.find(sim), sim.size(),
+                    std::string("simulation: {t_end: 1.0, output_step: ") + step +
+                        ", rtol: 1.0e-8, formulation: " + formulation + "}");
+      return simulate(sceneFromText(scene), {true});
+    };
+    const Results thirds = run("0.3"), halves = run("0.5"), beyond = run("2.0");
+    for (const Results* r : {&thirds, &halves, &beyond}) ASSERT_EQ(r->status, "completed") << formulation;
+    const std::vector<double> expect = {0.0, 0.3, 0.6, 0.9, 1.0};
+    ASSERT_EQ(thirds.time.size(), expect.size()) << formulation;
+    for (std::size_t k = 0; k < expect.size(); ++k) EXPECT_NEAR(thirds.time[k], expect[k], 1e-12);
+    ASSERT_EQ(beyond.time.size(), 2u) << formulation;
+    EXPECT_EQ(beyond.time.back(), 1.0);
+    EXPECT_EQ(halves.time.back(), 1.0);
+    // The same final state whatever the output step: the runs take other
+    // steps (max_step is 10 output steps), each with local errors below rtol
+    // 1e-8 of O(1) rad over < 200 steps: 1e-6 rad bounds their difference.
+    for (const Results* r : {&thirds, &beyond}) {
+      const double c = std::abs(r->orientation[1].back().dot(halves.orientation[1].back()));
+      EXPECT_LT(2.0 * std::acos(std::min(c, 1.0)), 1e-6) << formulation;  // the rotation between them
+    }
+  }
 }
 
 // A run with thousands of events (a rigid-truss SAR run's resting stops)
