@@ -169,7 +169,7 @@ class DormandPrince final : public Integrator {
     const double der2 = norm(f1 - k1_) / h;
     const double der12 = std::max(der2, std::sqrt(dnf));
     const double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.2);
-    h = std::min(100 * h, h1);
+    h = startingStep(std::min(100 * h, h1), t_);
     if (tol_.max_step > 0) h = std::min(h, tol_.max_step);
     return h;
   }

@@ -103,7 +103,7 @@ class ImexArk final : public Integrator {
     split_age_ = kSplitAge;  // renew L
     if (h_ <= 0.0) {
       const double fn = weightedRmsNorm(fn_, y_, y_, tol_);
-      h_ = fn > 1e-10 ? 0.01 / fn : 1e-4;
+      h_ = startingStep(fn > 1e-10 ? 0.01 / fn : 1e-4, t_);
       if (tol_.max_step > 0) h_ = std::min(h_, tol_.max_step);
     }
     have_dense_ = false;

@@ -66,8 +66,17 @@ class Integrator {
 // The step to try from t towards t + span: the controller's h, capped by
 // max_step and stretched to land exactly on the limit rather than leave a
 // sliver; 0 when it falls below the round-off floor at t (the integrator gives up).
+// The smallest step that still moves t by more than its rounding.
+inline double minimumStep(double t) { return 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t)); }
+// A starting step guess no smaller than 100 minimum steps: the guesses scale
+// with |y| / |f|, which on a stiff model at rest (a milligram on a 1e12 N/m
+// spring, its 1e15 m/s^2 against 1e-3 m) fall below the minimum step and
+// would end the run at t = 0 as if no step could meet the error test; a
+// guess too large is only rejected and shrunk.
+inline double startingStep(double h_guess, double t) { return std::max(h_guess, 100.0 * minimumStep(t)); }
+
 inline double nextStepSize(double h_controller, double t, double span, const Tolerances& tol) {
-  const double hmin = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t));
+  const double hmin = minimumStep(t);
   double h = std::min(h_controller, span);
   if (tol.max_step > 0) h = std::min(h, tol.max_step);
   if (span - h < 0.01 * h) h = span;

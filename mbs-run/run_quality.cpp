@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "mbs-run/run_summary.h"
@@ -62,7 +63,23 @@ std::string stepFailure(double t, const std::string& integrator, double rtol, do
   // iteration stops at a 1e-10 residual), so say what to change.
   s << "solver failure: step size too small at t = " << t << " (" << integrator << ", rtol " << rtol << ", atol "
     << atol << "): the error test cannot be met; at tight tolerances the right-hand side's"
-    << " precision is the limit - loosen rtol or use dopri5";
+    << " precision is the limit - loosen rtol" << (integrator == "dopri5" ? "" : " or use dopri5");
+  return s.str();
+}
+
+std::string StallMonitor::check(double t, const std::string& integrator) {
+  if (++steps_ % kWindow != 0) return "";
+  const double mean_step = (t - t_window_) / kWindow;
+  t_window_ = t;
+  const double remaining = mean_step > 0.0 ? (t_end_ - t) / mean_step : std::numeric_limits<double>::infinity();
+  if (!(remaining > kMaxRemainingSteps)) return "";
+  std::ostringstream s;
+  s << "solver failure: no progress at t = " << t << " s: the last " << kWindow << " steps (" << integrator
+    << ") averaged " << mean_step << " s, so the " << (t_end_ - t) << " s left would take " << remaining
+    << " more; the model has a time scale near " << mean_step
+    << " s (a very stiff spring or damper on a light body, or a nearly singular mass matrix: a body whose"
+    << " interface modes or static shapes hold a stiff local motion); check those, or try integrator: imex"
+    << " or trbdf2";
   return s.str();
 }
 

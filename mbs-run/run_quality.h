@@ -43,6 +43,30 @@ QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol);
 // "inaccurate: ..." naming the check that failed, its value and its limit.
 std::string qualityStatus(const RunSummary& r, double rtol, double atol);
 
+// A run that advances but would never finish: steps far above the underflow
+// limit that stay tiny (a time scale of 1e-12 s in a model of seconds: a
+// nearly singular mass matrix, a spring of 1e12 N/m on a milligram) make an
+// explicit integrator grind for years while the progress bar sits still.
+// Every kWindow accepted steps the mean step of the window gives the steps
+// still needed to reach t_end; beyond kMaxRemainingSteps (a day or more at
+// microseconds per step), check() returns the status to stop with, naming
+// the time scale and what to try. Legitimately long runs are far from it: the
+// suite's longest, the 1000 s pendulum, needs 1e5 steps; a flexible SAR run
+// at rtol 1e-8, 1e6.
+class StallMonitor {
+ public:
+  static constexpr long kWindow = 20000;
+  static constexpr double kMaxRemainingSteps = 1e10;
+  explicit StallMonitor(double t_end) : t_end_(t_end) {}
+  // After an accepted step that reached time t; "" while the run may go on.
+  std::string check(double t, const std::string& integrator);
+
+ private:
+  double t_end_;
+  long steps_ = 0;
+  double t_window_ = 0.0;
+};
+
 // The status of a run whose step size underflowed at time t, with what to
 // change (both formulations, simulation.cpp and tree_simulation.cpp).
 std::string stepFailure(double t, const std::string& integrator, double rtol, double atol);

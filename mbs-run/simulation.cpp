@@ -197,6 +197,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   TimedEvents timed(model);
   CrossingEvents crossings(model);
   OutputClock clock(st.output_step, st.t_end);
+  StallMonitor stall(st.t_end);
   EnergyBalance balance;
   fc::Progress progress("mbs-run", st.t_end, options.quiet);
   double t = 0.0;
@@ -291,6 +292,10 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       }
       if (hit.event || timed.dueAt(t)) balance.startSegment(sys.energies(t, y).total());
       progress.update(t, "steps " + std::to_string(methods.current().steps));
+      if (std::string stalled = stall.check(t, methods.current().name()); !stalled.empty()) {
+        R.status = std::move(stalled);
+        break;
+      }
     }
   } catch (const OutputError&) {
     throw;  // the results cannot be stored: an error, not a status

@@ -45,7 +45,7 @@ class TrBdf2 final : public Integrator {
     fn_old_ = fn_;
     if (h_ <= 0.0) {
       const double fn = scaledNorm(fn_, y_);
-      h_ = fn > 1e-10 ? 0.01 / fn : 1e-4;
+      h_ = startingStep(fn > 1e-10 ? 0.01 / fn : 1e-4, t_);
       h_ = std::min(h_, tol_.max_step > 0 ? tol_.max_step : h_);
     }
     have_dense_ = false;

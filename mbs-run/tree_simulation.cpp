@@ -184,6 +184,7 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
     methods = std::make_unique<IntegratorSwitching>(st, rhs, StiffPart(), tol);
     R.integrator = methods->label();
     OutputClock clock(st.output_step, st.t_end);
+    StallMonitor stall(st.t_end);
     EnergyBalance balance;
     methods->current().reset(0.0, z);
     write(treeSample(sys, dyn, 0.0, z));
@@ -209,6 +210,10 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
       if (methods->switchIfStiff(t, z, R.integrator_log)) R.integrator = methods->label();
       evaluations = dyn.evaluations;
       progress.update(t, "steps " + std::to_string(methods->current().steps));
+      if (std::string stalled = stall.check(t, methods->current().name()); !stalled.empty()) {
+        R.status = std::move(stalled);
+        break;
+      }
     }
   } catch (const OutputError&) {
     throw;

@@ -21,6 +21,7 @@
 #include "flexible/random_body.h"
 #include "helpers.h"
 #include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/run_quality.h"
 #include "mbs-run/simulation.h"
 
 namespace fc::mbs::test {
@@ -228,4 +229,42 @@ TEST(Extremes, TolerancesFromOneHundredthToOneTrillionth) {
 }
 
 }  // namespace
+TEST(Extremes, RunThatWouldNeverFinishStopsAndNamesItsTimeScale) {
+  // Time scales of 1e-9 s in runs of 100 s (3e10 steps of dopri5 at its
+  // stability limit h ~ 3.3 / omega): a milligram on a 1e12 N/m spring
+  // (omega = 1e9 rad/s, constrained path) and a light rod on a hinge with a
+  // 1e6 N m s damper (decay rate c / J = 3e9 1/s, joint-coordinate path).
+  // Before, both ground on for days with the progress bar still; now they
+  // stop after one window of steps with a status naming the time scale.
+  const char* spring = R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - {name: p, rigid: {mass: 1.0e-6, inertia: [[1.0e-9,0,0],[0,1.0e-9,0],[0,0,1.0e-9]]}, position: [0.001, 0, 0]}
+forces:
+  - {type: translational_spring_damper, bodies: [ground, p], points: [[0, 0, 0], [0, 0, 0]], stiffness: 1.0e12, free_length: 0.0}
+simulation: {t_end: 100.0, output_step: 1.0, integrator: dopri5}
+)";
+  const char* damper = R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - {name: a, rod: {length: 1.0, diameter: 0.001, mass: 1.0e-3}, position: [0.5, 0, 0]}
+joints:
+  - {name: R1, type: revolute, bodies: [ground, a], points: [[0, 0, 0], [-0.5, 0, 0]], axes: [[0,0,1],[0,0,1]]}
+forces:
+  - {type: gravity, g: [0, -9.81, 0]}
+  - {type: rotational_spring_damper, joint: R1, damping: 1.0e6}
+simulation: {t_end: 100.0, output_step: 1.0, integrator: dopri5}
+)";
+  for (const char* scene : {spring, damper}) {
+    const Results r = simulate(sceneFromText(scene), {true});
+    std::printf("[   info   ] %s\n", r.status.c_str());
+    EXPECT_EQ(r.status.rfind("solver failure: no progress", 0), 0u) << r.status;
+    EXPECT_NE(r.status.find("time scale near"), std::string::npos) << r.status;
+    // One window of steps at ~3e-9 s each: stopped within the first 1e-3 s.
+    EXPECT_EQ(r.steps, StallMonitor::kWindow);
+    EXPECT_LT(r.t_reached, 1e-3);
+    for (const auto& q : r.orientation.back()) EXPECT_TRUE(q.allFinite());
+  }
+}
+
 }  // namespace fc::mbs::test
