@@ -13,6 +13,7 @@
 #include "mbs-run/finite_guard.h"
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/joint_limits.h"
+#include "mbs-run/consistent_start.h"
 #include "mbs-run/run_quality.h"
 #include "mbs-run/tree_simulation.h"
 
@@ -138,27 +139,6 @@ class SummarySink : public SampleSink {
   RunSummary& r_;
 };
 
-class UnsatisfiableConstraints : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// After projecting at the start or after an event, constraints that cannot
-// all hold (contradicting joints) leave a violation far above what the
-// projection reaches otherwise (1e-12 of the scene's size): stop with a
-// status that says so rather than integrate a compromise.
-void requireSatisfiable(System& sys, double t, const VectorXd& y, double atol) {
-  const System::Violations v = sys.violations(t, y);
-  const double limit = std::max(1e-6, 100.0 * atol);
-  if (!(v.position > limit)) return;
-  std::ostringstream s;
-  s << "unsatisfiable constraints at t = " << t << ": after projection the joints still miss by " << v.position
-    << " (m or rad, limit " << limit << "), largest at joint "
-    << (v.worst_joint >= 0 ? sys.model().joints[v.worst_joint].name : std::string("?"))
-    << "; the joints contradict each other (check their points and axes)";
-  throw UnsatisfiableConstraints(s.str());
-}
-
 // The kinetic energy a velocity jump removes (a lock or a joint switched on
 // while the bodies move is a plastic impact: the projection that follows is
 // its impulse) goes into the dissipated-energy quadrature, so that
@@ -207,17 +187,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   // state, contradicting joints, a signal) ends the run with what was
   // computed so far and a status saying why, as the contract asks.
   try {
-    VectorXd y = sys.initialState();
-    // A non-finite ingredient (a huge length, NaN in a body file) is named
-    // before the projection spreads it over every coordinate.
-    if (const std::string cause = sys.nonFiniteCause(0.0, y); !cause.empty())
-      throw NonFiniteState("non-finite state: " + cause + " is not finite at t = 0 s");
-    // Capture held poses, make the initial state consistent, then measure the
-    // revolute angle offsets in the consistent configuration.
-    sys.initializeJoints(y);
-    sys.project(0.0, y);
-    sys.initializeJoints(y);
-    requireSatisfiable(sys, 0.0, y, tol.atol);
+    VectorXd y = consistentStart(sys, tol.atol);
     stops.start(sys, 0.0, y, R.event_log);
     if (stops.active()) sys.project(0.0, y);
     methods.current().reset(0.0, y);

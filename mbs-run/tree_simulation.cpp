@@ -6,6 +6,7 @@
 
 #include "common/progress.h"
 #include "common/termination.h"
+#include "mbs-run/consistent_start.h"
 #include "mbs-run/finite_guard.h"
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/kinematic_tree.h"
@@ -140,20 +141,8 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
   try {
     // The constrained path's consistent start (simulation.cpp), then the
     // tree's coordinates there.
-    VectorXd y = sys.initialState();
-    if (const std::string cause = sys.nonFiniteCause(0.0, y); !cause.empty())
-      throw NonFiniteState("non-finite state: " + cause + " is not finite at t = 0 s");
-    sys.initializeJoints(y);
-    sys.project(0.0, y);
-    sys.initializeJoints(y);
     const double tol_atol = st.atol > 0 ? st.atol : 1e-3 * st.rtol;
-    if (const System::Violations v = sys.violations(0.0, y); v.position > std::max(1e-6, 100.0 * tol_atol)) {
-      std::ostringstream s;
-      s << "unsatisfiable constraints at t = 0: after projection the joints still miss by " << v.position
-        << " (m or rad), largest at joint " << (v.worst_joint >= 0 ? model.joints[v.worst_joint].name : "?")
-        << "; the joints contradict each other (check their points and axes)";
-      throw std::runtime_error(s.str());
-    }
+    VectorXd y = consistentStart(sys, tol_atol);
     std::vector<BodyPose> P0;
     sys.poses(y, P0);
     std::vector<JointRuntime> runtimes;
@@ -220,6 +209,8 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
   } catch (const fc::Terminated& e) {
     R.status = "interrupted by " + fc::signalName(e.signal());
   } catch (const NonFiniteState& e) {
+    R.status = e.what();
+  } catch (const UnsatisfiableConstraints& e) {
     R.status = e.what();
   } catch (const std::exception& e) {
     std::ostringstream msg;

@@ -9,11 +9,14 @@
 // No constraints, no multipliers, no Euler parameters: nothing in common
 // with mbs-run's augmented Lagrangian path but the physics. The mass matrix
 // is dense (O(N^3) per evaluation): for N up to a few hundred.
-// Used by tests/mbs-run/test_chain_reference.cpp and bench/mbs-run/bench_chains.cpp.
+// Used by tests/mbs-run/test_chain_reference.cpp, test_kinematic_tree.cpp,
+// test_run_quality.cpp and bench/mbs-run (bench_chains.cpp, chain_scene.h).
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace fc::mbs::test {
 
@@ -57,5 +60,46 @@ struct MinimalChain {
     return p;
   }
 };
+
+// The same chain as an mbs-run scene: n thin links (length l, mass m,
+// centroidal inertia m l^2 / 12 about the joint axis y, 1e-7 about their
+// own axis, which only enters an idle spin) on revolute joints about y,
+// laid out along +x from the ground's origin, gravity -z; `simulation` is the
+// scene's simulation block.
+inline std::string thinLinkChainScene(int n, double l, double m, const std::string& simulation) {
+  std::string b = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+  std::string j = "joints:\n";
+  char s[400];
+  for (int k = 0; k < n; ++k) {
+    std::snprintf(s, sizeof s,
+                  "  - {name: L%d, rigid: {mass: %g, inertia: [[1e-7,0,0],[0,%.17g,0],[0,0,%.17g]]}, position: "
+                  "[%.17g, 0, 0]}\n",
+                  k, m, m * l * l / 12, m * l * l / 12, (k + 0.5) * l);
+    b += s;
+    std::snprintf(s, sizeof s,
+                  "  - {name: J%d, type: revolute, bodies: [%s, L%d], points: [[%g, 0, 0], [%g, 0, 0]], axes: "
+                  "[[0, 1, 0], [0, 1, 0]]}\n",
+                  k, k ? ("L" + std::to_string(k - 1)).c_str() : "ground", k, k ? l / 2 : 0.0, -l / 2);
+    j += s;
+  }
+  return b + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: " + simulation + "\n";
+}
+
+// n rods (0.1 m, 0.1 kg, 10 mm across) on revolute joints about y along +x
+// from the ground's origin, gravity -z: the chain of the benchmarks
+// (bench/mbs-run) and of the run-quality tests.
+inline std::string rodChainScene(int n, const std::string& simulation) {
+  std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
+  std::string j = "joints:\n";
+  for (int k = 0; k < n; ++k) {
+    y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
+         std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
+    const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
+    const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
+    j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
+         "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
+  }
+  return y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: " + simulation + "\n";
+}
 
 }  // namespace fc::mbs::test

@@ -27,25 +27,11 @@ struct Chain : MinimalChain {
 };
 
 std::string chainScene(int n, double t_end, double rtol, double atol) {
-  std::string b = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
-  std::string j = "joints:\n";
-  char s[400];
-  for (int k = 0; k < n; ++k) {
-    // Thin rods along body x: the axial inertia only enters an idle spin.
-    std::snprintf(s, sizeof s,
-                  "  - {name: L%d, rigid: {mass: %g, inertia: [[1e-7,0,0],[0,%.17g,0],[0,0,%.17g]]}, position: "
-                  "[%.17g, 0, 0]}\n",
-                  k, kM, kM * kL * kL / 12, kM * kL * kL / 12, (k + 0.5) * kL);
-    b += s;
-    std::snprintf(s, sizeof s,
-                  "  - {name: J%d, type: revolute, bodies: [%s, L%d], points: [[%g, 0, 0], [%g, 0, 0]], axes: "
-                  "[[0, 1, 0], [0, 1, 0]]}\n",
-                  k, k ? ("L" + std::to_string(k - 1)).c_str() : "ground", k, k ? kL / 2 : 0.0, -kL / 2);
-    j += s;
-  }
-  std::snprintf(s, sizeof s, "simulation: {t_end: %g, output_step: %g, rtol: %g, atol: %g, integrator: dopri5, formulation: constrained}\n",
-                t_end, t_end / 10, rtol, atol);
-  return b + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\n" + s;
+  char sim[200];
+  std::snprintf(sim, sizeof sim,
+                "{t_end: %g, output_step: %g, rtol: %g, atol: %g, integrator: dopri5, formulation: constrained}", t_end,
+                t_end / 10, rtol, atol);
+  return thinLinkChainScene(n, kL, kM, sim);
 }
 
 // Largest distance between a rod centre of the run and of the reference at

@@ -27,24 +27,7 @@ namespace {
 
 constexpr double kL = 0.1, kM = 0.1, kG = 9.81;
 
-std::string planarChain(int n, const std::string& simulation) {
-  std::string b = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
-  std::string j = "joints:\n";
-  char s[400];
-  for (int k = 0; k < n; ++k) {
-    std::snprintf(s, sizeof s,
-                  "  - {name: L%d, rigid: {mass: %g, inertia: [[1e-7,0,0],[0,%.17g,0],[0,0,%.17g]]}, position: "
-                  "[%.17g, 0, 0]}\n",
-                  k, kM, kM * kL * kL / 12, kM * kL * kL / 12, (k + 0.5) * kL);
-    b += s;
-    std::snprintf(s, sizeof s,
-                  "  - {name: J%d, type: revolute, bodies: [%s, L%d], points: [[%g, 0, 0], [%g, 0, 0]], axes: "
-                  "[[0, 1, 0], [0, 1, 0]]}\n",
-                  k, k ? ("L" + std::to_string(k - 1)).c_str() : "ground", k, k ? kL / 2 : 0.0, -kL / 2);
-    j += s;
-  }
-  return b + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: " + simulation + "\n";
-}
+std::string planarChain(int n, const std::string& simulation) { return thinLinkChainScene(n, kL, kM, simulation); }
 
 // The consistent initial poses of a scene, as both paths start from them.
 std::vector<BodyPose> startPoses(const Model& m) {

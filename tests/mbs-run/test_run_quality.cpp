@@ -14,6 +14,7 @@
 
 #include "common/rotations.h"
 #include "beam_body.h"
+#include "chain_reference.h"
 #include "helpers.h"
 #include "mbs-run/run_quality.h"
 #include "mbs-run/run_summary.h"
@@ -22,21 +23,8 @@
 namespace fc::mbs::test {
 namespace {
 
-// n rods (0.1 m, 0.1 kg) on revolute joints about y along +x from the
-// ground's origin, gravity -z: the chain of bench/mbs-run/chain_scene.h.
-std::string rodChain(int n, const std::string& simulation) {
-  std::string y = "bodies:\n  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n";
-  std::string j = "joints:\n";
-  for (int k = 0; k < n; ++k) {
-    y += "  - {name: L" + std::to_string(k) + ", rod: {length: 0.1, diameter: 0.01, mass: 0.1}, position: [" +
-         std::to_string(0.05 + 0.1 * k) + ", 0, 0]}\n";
-    const std::string prev = k ? "L" + std::to_string(k - 1) : "ground";
-    const std::string at = k ? "[0.05, 0, 0]" : "[0, 0, 0]";
-    j += "  - {name: J" + std::to_string(k) + ", type: revolute, bodies: [" + prev + ", L" + std::to_string(k) +
-         "], points: [" + at + ", [-0.05, 0, 0]], axes: [[0, 1, 0], [0, 1, 0]]}\n";
-  }
-  return y + j + "forces:\n  - {type: gravity, g: [0, 0, -9.81]}\nsimulation: " + simulation + "\n";
-}
+// The benchmarks' chain (chain_reference.h).
+std::string rodChain(int n, const std::string& simulation) { return rodChainScene(n, simulation); }
 
 Eigen::Vector3d freeEnd(const Results& r, int n) {
   return r.position[n].back() + rotationMatrix(r.orientation[n].back()) * Eigen::Vector3d(0.05, 0, 0);
