@@ -158,6 +158,32 @@ Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen:
   std::vector<gmsh::vectorpair> out_map;
   gmsh::model::occ::fragment({{2, panel}}, tools, out, out_map);
   gmsh::model::occ::synchronize();
+  // The size cap inside each box (box_size_fraction): a gmsh Box field per capped box, the size
+  // growing linearly back to h over a distance h outside it (well-shaped triangles in the
+  // transition), their minimum the background size. The field's box is widened by tol so that
+  // the outline's nodes, on it to rounding, count as inside.
+  std::vector<double> caps;
+  for (const auto& q : boxes) {
+    const double dx = q(2) - q(0), dy = q(3) - q(1);
+    const double cap = r.box_size_fraction * std::min(dx, dy);
+    if (!(dx > tol && dy > tol) || !(cap > 0) || cap >= h) continue;
+    const int f = gmsh::model::mesh::field::add("Box");
+    gmsh::model::mesh::field::setNumber(f, "VIn", cap);
+    gmsh::model::mesh::field::setNumber(f, "VOut", h);
+    gmsh::model::mesh::field::setNumber(f, "XMin", q(0) - tol);
+    gmsh::model::mesh::field::setNumber(f, "XMax", q(2) + tol);
+    gmsh::model::mesh::field::setNumber(f, "YMin", q(1) - tol);
+    gmsh::model::mesh::field::setNumber(f, "YMax", q(3) + tol);
+    gmsh::model::mesh::field::setNumber(f, "ZMin", -1.0);
+    gmsh::model::mesh::field::setNumber(f, "ZMax", 1.0);
+    gmsh::model::mesh::field::setNumber(f, "Thickness", h);
+    caps.push_back(f);
+  }
+  if (!caps.empty()) {
+    const int fmin = gmsh::model::mesh::field::add("Min");
+    gmsh::model::mesh::field::setNumbers(fmin, "FieldsList", caps);
+    gmsh::model::mesh::field::setAsBackgroundMesh(fmin);
+  }
   gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay, as the plain rectangle
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   gmsh::model::mesh::generate(2);

@@ -26,6 +26,12 @@ struct PanelMeshRequest {
   // size: the patch, its area and its centre do not change with the mesh. A box thin in one
   // direction becomes a line, in both a point.
   std::vector<Eigen::Vector4d> conforming_boxes;
+  // Element size inside each conforming box at most this fraction of the box's smaller side
+  // (0: no cap; boxes thin in one direction are lines and are not capped). A box patch's weights
+  // spread a moment over it by their second moments, which are the box's only once the box is a few
+  // elements across: at h = 0.1 a 25 mm bracket footprint is 0.3 elements wide and its patch's second
+  // moments are +200 % off (docs/fe-prep.md, "Distributed interfaces").
+  double box_size_fraction = 0.5;
   bool quiet = true;
   // Refused above this (std::invalid_argument), before meshing: mesh.max_triangles.
   long max_triangles = kDefaultMaxTriangles;

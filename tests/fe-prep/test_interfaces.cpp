@@ -198,6 +198,58 @@ TEST(Interfaces, BoxPatchesAreMeshedConformingAndWeightedByTheirArea) {
     for (int k = 1; k < 3; ++k) EXPECT_LT(second_error[k][d], second_error[k - 1][d] / 2.5) << d << " " << k;
 }
 
+TEST(Interfaces, ThinBoxPatchesAreResolvedAtCoarseMeshes) {
+  // A 25 mm x 0.2 m bracket footprint (the SAR study's thinnest, S12) on a
+  // panel meshed at h = 0.1: without the size cap inside boxes it is 0.25
+  // elements wide, and its patch weights' second moment across it is the P1
+  // interpolant's of x^2 on one triangle layer, +200 % of the box's b^3 d / 12
+  // (measured: see the info line). With the cap (box_size_fraction 0.5: at most
+  // half the smaller side) it is two elements wide. The P1 interpolant of x^2
+  // on n equal elements across a side b exceeds b^3 d / 12 by 2 / n^2: +50 % at
+  // n = 2 across (Ixx), +0.8 % at the 16 elements along (Iyy). Allowed: 60 %
+  // and 2 % (unstructured triangles scatter about the uniform split), against
+  // +200 % and +50 % without the cap.
+  // Reference: the box's exact moments, closed form.
+  const double x0 = 0.0, x1 = 0.025, y0 = -0.325, y1 = -0.125;  // cut by the panel's edge y = -0.325
+  auto excess = [&](double fraction) {
+    PanelMeshRequest r;
+    r.length = 1.0;
+    r.width = 0.65;
+    r.size = 0.1;
+    r.box_size_fraction = fraction;
+    r.conforming_boxes.emplace_back(x0, y0, x1, y1);
+    const Mesh mesh = meshRectangle(r);
+    std::vector<long> nodes;
+    const double tol = 1e-12;
+    for (long k = 0; k < mesh.nodeCount(); ++k) {
+      const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
+      if (x > x0 - tol && x < x1 + tol && y > y0 - tol && y < y1 + tol) nodes.push_back(k);
+    }
+    const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+    const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    double s = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const double wi = w(static_cast<long>(i)), x = mesh.nodes(nodes[i], 0), y = mesh.nodes(nodes[i], 1);
+      s += wi, sx += wi * x, sy += wi * y, sxx += wi * (x - cx) * (x - cx), syy += wi * (y - cy) * (y - cy);
+    }
+    EXPECT_NEAR(s / area, 1.0, 1e-12) << fraction;  // conforming either way: area and centre exact
+    EXPECT_NEAR(sx / area, cx, 1e-12) << fraction;
+    EXPECT_NEAR(sy / area, cy, 1e-12) << fraction;
+    const double Ixx = area * (x1 - x0) * (x1 - x0) / 12, Iyy = area * (y1 - y0) * (y1 - y0) / 12;
+    return std::array<double, 3>{sxx / Ixx - 1, syy / Iyy - 1, static_cast<double>(mesh.triangles.size())};
+  };
+  const auto capped = excess(0.5), uncapped = excess(0.0);
+  std::printf("[   info   ] 25 mm x 0.2 m box at h = 0.1: second-moment excess Ixx %.3g, Iyy %.3g with the cap "
+              "(%g triangles), Ixx %.3g, Iyy %.3g without (%g triangles)\n",
+              capped[0], capped[1], capped[2], uncapped[0], uncapped[1], uncapped[2]);
+  EXPECT_GT(uncapped[0], 1.0);  // the failure the cap removes: the thin direction not resolved at all
+  for (int d = 0; d < 2; ++d) EXPECT_GT(capped[d], -1e-12) << d;  // the interpolant of a convex function lies above it
+  EXPECT_LT(capped[0], 0.6);
+  EXPECT_LT(capped[1], 0.02);
+  // The cap refines near the box only: the panel stays a coarse mesh (233 triangles uncapped).
+  EXPECT_LT(capped[2], 4 * uncapped[2] + 200);
+}
+
 TEST(Interfaces, BoxPatchInterfaceIsTheFitOverItsFootprint) {
   // The raised hinge pins of the test below on bracket footprints (box patches
   // 0.1 x 0.2 m cut by the short edge) through the whole fe-prep path: the
