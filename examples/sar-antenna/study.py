@@ -81,7 +81,8 @@ TRUSSES = {f"B{k}": f"truss_B{k}" for k in range(4, 13)}
 # from mesh to mesh (centre up to 34 mm off at h = 0.1) and the coarse halvings fell only 1.2x. A footprint must be large
 # against the mesh: discs of 25-30 mm (the largest that fit between S2/S6 and S12/S14 unsplit) held 1-7
 # nodes on meshes up to h = 0.0125 and the successive meshes did not converge (1.2e-3 then 2.5e-3 rad, see
-# docs/accuracy-cb.md). H23 (stop-only revolute, active only after alignment) stays on one node, outside the
+# docs/accuracy-cb.md); fe-prep also meshes inside each footprint at most half its smaller side, so even the
+# thinnest (S12, 25 mm) is two elements across at the coarse meshes. H23 (stop-only revolute, active only after alignment) stays on one node, outside the
 # boundary. The mesh is set by its size h (halved per step), the modes by the fixed-interface count; a
 # different count is a different basis, so each (mesh, modes) pair has its own body file.
 CB_FOOTPRINT = 0.1
@@ -97,6 +98,10 @@ CB_REF = dict(CB_BASE, tri=0.0125, rtol=1e-7)
 CB_CHECK_MESH = 0.00625
 CB_MESHES = [0.1, 0.05, 0.025, 0.0125]
 CB_PANEL_MODES = [2, 4, 8, 16, 32]
+# Which panel's modes the mode sequence waits for: panel 3's fixed-interface count alone (key "p3"), panel 2
+# keeping CB_SPLIT_OTHER, against both at CB_SPLIT_OTHER (group "panel 3 modes"; out of the Pareto fronts).
+CB_SPLIT_MODES = [2, 3, 4, 5, 6, 7, 8]
+CB_SPLIT_OTHER = 16
 
 
 def use_model(model):
@@ -124,12 +129,26 @@ def run_name(c):
     if c["preset"]:
         return f"preset_{c['preset']}"
     mesh = f"t{c['tri']}" if isinstance(c["tri"], int) else f"h{c['tri']:g}"
-    return f"{mesh}_m{c['modes']}_k{c['truss']}_r{c['rtol']:.0e}_{c['integ']}" + ("" if monitored(c) else "_nomon")
+    return (f"{mesh}_m{c['modes']}" + (f"_p3m{c['p3']}" if "p3" in c else "")
+            + f"_k{c['truss']}_r{c['rtol']:.0e}_{c['integ']}" + ("" if monitored(c) else "_nomon"))
 
 
 def monitored(c):
     """Whether the run keeps the scene's contact monitor (outputs: distances); see CB_CHECK_MESH."""
     return c.get("monitor", True)
+
+
+def in_front(c):
+    """Runs of the Pareto fronts: the scene's outputs (monitor) and one mode count for both panels."""
+    return monitored(c) and "p3" not in c
+
+
+def panel_files(panels, c):
+    """The body files of run c (cb): both panels at (mesh, modes), or panel 3 at its own count (p3)."""
+    out = dict(panels[(c["tri"], c["modes"])])
+    if "p3" in c:
+        out["panel3_iso"] = panels[(c["tri"], c["p3"])]["panel3_iso"]
+    return out
 
 
 def sweep(args):
@@ -177,6 +196,7 @@ def sweep_cb():
              ("combined", dict(BASE, tri=0.0125, rtol=1e-4))]
     runs += [("integrator", dict(BASE, integ="trbdf2", rtol=1e-4))]
     runs += [("mesh check", dict(BASE, tri=h, monitor=False)) for h in ((REF["tri"], CB_CHECK_MESH) if CB_CHECK_MESH else ())]
+    runs += [("panel 3 modes", dict(BASE, modes=CB_SPLIT_OTHER, p3=m)) for m in CB_SPLIT_MODES]
     return runs
 
 
@@ -415,7 +435,7 @@ def main():
 
     runs = sweep(args)
     if is_cb(args):  # a Craig-Bampton basis per (mesh, fixed-interface modes)
-        keys = sorted({(c["tri"], c["modes"]) for _, c in runs})
+        keys = sorted({(c["tri"], c["modes"]) for _, c in runs} | {(c["tri"], c["p3"]) for _, c in runs if "p3" in c})
         with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:  # the finest take fe-prep minutes
             panels = dict(zip(keys, pool.map(lambda k: make_panels(args, k[0], k[1]), keys)))
     else:
@@ -424,7 +444,7 @@ def main():
     unique = {}
     for _, c in runs:
         unique.setdefault(run_name(c), c)
-    scenes = {n: make_scene(args, scene0, panels[(c["tri"], c["modes"]) if is_cb(args) else c["tri"]], c)
+    scenes = {n: make_scene(args, scene0, panel_files(panels, c) if is_cb(args) else panels[c["tri"]], c)
               for n, c in unique.items()}
     res = {}
     with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:
@@ -458,7 +478,7 @@ def main():
                     "steps", "rejected", "status"] + keys)
         for n, c in unique.items():
             r = res[n]
-            w.writerow([n, c["tri"], c["modes"], c["truss"], r["rtol"], r["integrator"], c["preset"] or "",
+            w.writerow([n, c["tri"], f"{c['modes']}/{c['p3']}" if "p3" in c else c["modes"], c["truss"], r["rtol"], r["integrator"], c["preset"] or "",
                         r["cpu"], r["steps"], r["rejected"], r["status"]] + [r[k] for k in keys])
     write_doc(args, runs, unique, res, ref, scene_src)
 
@@ -466,7 +486,8 @@ def main():
 def tag(c):
     if c["preset"]:
         return f"preset {c['preset']}"
-    t = f"{mesh_tag(c['tri'])}/{c['modes']}m/{c['truss']}k/{c['rtol']:.0e}"
+    t = f"{mesh_tag(c['tri'])}/{c['modes']}m" + (f" (panel 3: {c['p3']}m)" if "p3" in c else "") + \
+        f"/{c['truss']}k/{c['rtol']:.0e}"
     return t + (" trbdf2" if c["integ"] == "trbdf2" else "") + ("" if monitored(c) else " no monitor")
 
 
@@ -477,7 +498,7 @@ def same_model_as_ref(c):
 
 def plot_pareto(args, unique, res, ref_uncertainty):
     # Runs of the reference's own mesh and modes are left out: they would rank as exact.
-    names = [n for n in unique if not same_model_as_ref(unique[n]) and monitored(unique[n])
+    names = [n for n in unique if not same_model_as_ref(unique[n]) and in_front(unique[n])
              and np.isfinite(res[n]["a_max"])]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
     front = {}
@@ -865,6 +886,50 @@ def thinnest_footprint():
     return min(sides)
 
 
+def footprint_sides():
+    """The smaller side of every bracket footprint, clipped to its panel [m]."""
+    sides = []
+    for panel in PANELS.values():
+        spec = yaml.safe_load(open(os.path.join(HERE, "bodies", panel + ".yaml")))
+        size = np.array([spec["body"]["shell"]["rectangle"]["length"], spec["body"]["shell"]["rectangle"]["width"]]) / 2
+        for lo, hi in cb_footprints(spec["body"]["interfaces"]).values():
+            sides.append(round(float((np.minimum(hi[:2], size) - np.maximum(lo[:2], -size)).min()), 9))
+    return sides
+
+
+def fixed_interface_modes(args, panel, h, n):
+    """The first n fixed-interface modes of a panel (its Craig-Bampton boundary pinned; fe-prep on the study's
+    body without `reduction`): frequencies [Hz] and each mode's effective-mass shares, L^2 / (norm * total) with
+    L the mode's translations weighted by lumped (tributary-area) masses against a unit rigid translation z and
+    unit rotations about the panel's x and y axes through its centroid (the density cancels: uniform panels)."""
+    src = os.path.join(args.out, "bodies", f"{panel}_h{h:g}_cb{BASE['modes']}.yaml")
+    spec = yaml.safe_load(open(src))
+    spec["body"].pop("reduction")
+    spec["body"]["modes"] = n
+    spec["body"]["name"] = f"{panel}_h{h:g}_fixed{n}"
+    y = os.path.join(args.out, "bodies", spec["body"]["name"] + ".yaml")
+    text = yaml.safe_dump(spec, default_flow_style=None, sort_keys=False)
+    if not (os.path.exists(y) and open(y).read() == text):
+        open(y, "w").write(text)
+    h5 = y[:-5] + ".h5"
+    if not newer(h5, y, args.fe_prep):
+        check_call([args.fe_prep, y, "-o", h5, "-q"], "fe-prep")
+    with h5py.File(h5, "r") as f:
+        X, T, S, freq = f["mesh/nodes"][()], f["mesh/triangles"][()], f["modes/shapes"][()], f["modes/frequencies_hz"][()]
+    area = 0.5 * np.linalg.norm(np.cross(X[T[:, 1]] - X[T[:, 0]], X[T[:, 2]] - X[T[:, 0]]), axis=1)
+    m = np.zeros(len(X))
+    np.add.at(m, T.ravel(), np.repeat(area / 3, 3))
+    r = X - (m[:, None] * X).sum(0) / m.sum()
+    u = S[:, :, :3]  # (modes, nodes, 3) translations
+    fields = {"Tz": np.tile([0.0, 0.0, 1.0], (len(X), 1)),
+              "Rx": np.cross(np.tile([1.0, 0.0, 0.0], (len(X), 1)), r),
+              "Ry": np.cross(np.tile([0.0, 1.0, 0.0], (len(X), 1)), r)}
+    norm = np.einsum("i,mij,mij->m", m, u, u)
+    shares = {k: np.einsum("i,ij,mij->m", m, v, u) ** 2 / norm / np.einsum("i,ij,ij", m, v, v)
+              for k, v in fields.items()}
+    return freq, shares
+
+
 def mesh_pairs(args):
     """Successive meshes of the base model (label, coarser, finer); for cb the reference's mesh against
     CB_CHECK_MESH too, both without the contact monitor (see CB_CHECK_MESH)."""
@@ -898,10 +963,27 @@ def cb_convergence_text(args, R):
     L.append("|---|---|---|---|---|")
     for h, g in zip(levels, geo):
         L.append(f"| {h:g} | {g['nodes']} | {g['area']:.1e} | {1000 * g['centre']:.1e} | +{100 * g['second']:.1f} % |")
+    thin = thinnest_footprint()
     L.append(f"\nEvery mesh models the same brackets: area and centre exact (rounding). The second moments (how the "
-             f"fit spreads a moment over the patch) are those of the footprint only once the mesh resolves it: the "
-             f"thinnest footprint is {1000 * thinnest_footprint():.0f} mm across (S12, between the panel corner and "
-             f"S14), {', '.join(f'{thinnest_footprint() / h:.1f}' for h in levels)} elements at these meshes.\n")
+             f"fit spreads a moment over the patch) are those of the footprint only once the mesh resolves it. "
+             f"fe-prep caps the element size inside each footprint at half its smaller side (docs/fe-prep.md), so "
+             f"the thinnest footprint, {1000 * thin:.0f} mm across (S12, between the panel corner and S14), is "
+             f"{', '.join(f'{thin / min(h, 0.5 * thin):.1f}' for h in levels)} elements across at these meshes "
+             f"(without the cap {', '.join(f'{thin / h:.1f}' for h in levels)}).\n")
+    sides = footprint_sides()
+    wide = max(set(sides), key=sides.count)  # the usual footprint (most of them)
+    cap = lambda side, h: min(h, 0.5 * side)  # noqa: E731  fe-prep's element size inside a footprint
+    same = [k for k in range(len(levels) - 1) if cap(wide, levels[k]) == cap(wide, levels[k + 1])]
+    L.append(f"Inside a footprint fe-prep's elements are at most half its smaller side, so a halving of h refines a "
+             f"footprint only where h is below that: the {1000 * wide:.0f} mm-wide footprints ({sides.count(wide)} of "
+             f"{len(sides)}) have {', '.join(f'{1000 * cap(wide, h):g}' for h in levels)} mm elements at these meshes, "
+             f"the thinnest {', '.join(f'{1000 * cap(min(sides), h):g}' for h in levels)} mm. "
+             + ("".join(f"The halving {levels[k]:g} -> {levels[k + 1]:g}, which leaves those footprints' elements as "
+                        f"they were, moves R3 by {fmt(mesh_d[k])} rad; " for k in same)
+                if same else "")
+             + "the halvings that refine them move it by "
+             + ", ".join(f"{fmt(mesh_d[k])} ({levels[k]:g} -> {levels[k + 1]:g})" for k in range(len(mesh_d)) if k not in same)
+             + " rad.\n")
     i = steady_from(mesh_d)
     if i is None:
         L.append("The mesh differences do not fall by 2x per halving of h at every step: "
@@ -924,6 +1006,29 @@ def cb_convergence_text(args, R):
                  + (f"Before it: {', '.join(fmt(d) for d in mode_d[:j])} rad (ratios "
                     + ", ".join(f"{a / b:.2f}" for a, b in zip(mode_d[:j + 1], mode_d[1:j + 2])) + ").\n"
                     if j > 0 else "\n"))
+    if any("p3" in c for _, c in sweep_cb()):
+        both = R(dict(BASE, modes=CB_SPLIT_OTHER))
+        split = [errors(R(dict(BASE, modes=CB_SPLIT_OTHER, p3=m)), both, args.t_cut)["a_max"] for m in CB_SPLIT_MODES]
+        L.append(f"Which panel's modes the sequence waits for: panel 3 at {', '.join(map(str, CB_SPLIT_MODES))} "
+                 f"fixed-interface modes with panel 2 at {CB_SPLIT_OTHER}, against both at {CB_SPLIT_OTHER} (group "
+                 f"`panel 3 modes`): {', '.join(fmt(d) for d in split)} rad in R3 (the sequence for both panels "
+                 f"against {CB_SPLIT_OTHER} modes: "
+                 + ", ".join(f"{m}: {fmt(errors(R(dict(BASE, modes=m)), both, args.t_cut)['a_max'])}"
+                             for m in PANEL_MODES if m < CB_SPLIT_OTHER) + "). Adding panel 3's mode k divides "
+                 "that distance by " + ", ".join(f"{CB_SPLIT_MODES[k]}: {split[k - 1] / split[k]:.2f}"
+                                                for k in range(1, len(split)) if split[k] > 0)
+                 + ". The count takes modes by frequency, not by how strongly the run excites them: a doubling "
+                 "adds whichever modes come next.\n")
+        freq, shares = fixed_interface_modes(args, "panel3_iso", BASE["tri"], max(CB_SPLIT_MODES))
+        L.append(f"Panel 3's fixed-interface modes (h = {BASE['tri']:g} m; share of the panel's mass moving with a "
+                 "rigid translation z, and of its moments of inertia about its centroid's x and y axes, that each "
+                 "mode carries: its effective mass against that rigid motion, from lumped masses):\n")
+        L.append("| mode | " + " | ".join(str(k + 1) for k in range(len(freq))) + " |")
+        L.append("|---|" + "---|" * len(freq))
+        L.append("| frequency [Hz] | " + " | ".join(f"{x:.2f}" for x in freq) + " |")
+        for k in ("Tz", "Rx", "Ry"):
+            L.append(f"| {k} | " + " | ".join(f"{x:.3f}" for x in shares[k]) + " |")
+        L.append("")
     if CB_CHECK_MESH:
         monitor = errors(R(dict(BASE, tri=MESHES[-1], monitor=False)), R(dict(BASE, tri=MESHES[-1])), args.t_cut)
         L.append(f"The contact monitor does not act on the dynamics: h = {MESHES[-1]:g} m with and without it "
@@ -988,6 +1093,7 @@ def compare_fronts(args, unique, res, front):
     folder = os.path.abspath(folder)
     ref_row = next(r for r in read_summary(folder) if float(r["a_max"]) == 0)  # the other study's reference
     rows = [r for r in read_summary(folder) if np.isfinite(float(r["a_max"])) and not r["run"].endswith("_nomon")
+            and "_p3m" not in r["run"]
             and not all(r[k] == ref_row[k] for k in ("triangles", "panel_modes", "truss_modes"))]
 
     def label_of(r):
