@@ -109,19 +109,19 @@ void fsyncDirectoryOf(const std::string& path) {
   fsyncOpen(directoryOf(path), O_RDONLY | O_DIRECTORY, "directory");
 }
 
-void writeFileAtomic(const std::string& path, const std::string& content) {
-  std::string tmp;
+StagedFile::StagedFile(const std::string& path, const std::string& content) : path_(path) {
   int fd = -1;
   for (int attempt = 0; attempt < 8 && fd < 0; ++attempt) {
-    tmp = temporaryNameFor(path);
-    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    tmp_ = temporaryNameFor(path);
+    fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0 && errno != EEXIST) break;
   }
-  if (fd < 0) throw std::runtime_error("cannot create " + tmp + ": " + osReason(errno));
-  TemporaryRegistration reg(tmp);
+  if (fd < 0) throw std::runtime_error("cannot create " + tmp_ + ": " + osReason(errno));
+  registration_ = std::make_unique<TemporaryRegistration>(tmp_);
   auto fail = [&](const std::string& what, int err) {
     if (fd >= 0) ::close(fd);
-    ::unlink(tmp.c_str());
+    ::unlink(tmp_.c_str());
+    tmp_.clear();
     throw std::runtime_error(what + ": " + osReason(err) + " (" + path + " left unchanged)");
   };
   const char* p = content.data();
@@ -130,22 +130,38 @@ void writeFileAtomic(const std::string& path, const std::string& content) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      fail("cannot write " + tmp, errno);
+      fail("cannot write " + tmp_, errno);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 && errno != EINVAL) fail("cannot sync " + tmp, errno);
+  if (::fsync(fd) != 0 && errno != EINVAL) fail("cannot sync " + tmp_, errno);
   if (::close(fd) != 0) {
     fd = -1;
-    fail("cannot close " + tmp, errno);
+    fail("cannot close " + tmp_, errno);
   }
-  fd = -1;
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    fail("cannot rename " + tmp + " to " + path, errno);
-  reg.release();
-  fsyncDirectoryOf(path);
 }
+
+StagedFile::~StagedFile() {
+  if (!tmp_.empty()) ::unlink(tmp_.c_str());
+}
+
+void StagedFile::commit() {
+  if (tmp_.empty()) throw std::logic_error("StagedFile::commit: nothing staged for " + path_);
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    const int err = errno;
+    const std::string tmp = tmp_;
+    ::unlink(tmp.c_str());
+    tmp_.clear();
+    throw std::runtime_error("cannot rename " + tmp + " to " + path_ + ": " + osReason(err) + " (" + path_ +
+                             " left unchanged)");
+  }
+  tmp_.clear();
+  registration_->release();
+  fsyncDirectoryOf(path_);
+}
+
+void writeFileAtomic(const std::string& path, const std::string& content) { StagedFile(path, content).commit(); }
 
 void checkOutputWritable(const std::string& output) {
   if (output.empty()) throw std::runtime_error("the output path is empty");

@@ -1,8 +1,11 @@
 #pragma once
 // Small file utilities shared by the tools: hashing inputs, atomic writes, and the
 // checks on an output path every tool makes before it starts computing.
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "common/termination.h"
 
 namespace fc {
 
@@ -20,6 +23,25 @@ std::string readTextFile(const std::string& path);
 // the directory fsync'ed. On any error the temporary is removed, `path` keeps its
 // previous content, and std::runtime_error names the file and the OS reason.
 void writeFileAtomic(const std::string& path, const std::string& content);
+
+// writeFileAtomic in two steps, for a file that must change together with
+// another one (fe-prep's .xdmf view of its .h5): the constructor writes and
+// fsyncs the temporary (throwing as writeFileAtomic, `path` unchanged),
+// commit() renames it onto `path`; destroyed without commit() it removes the
+// temporary. Writing the small companion first means a full disk stops the
+// run before either file changes, and a failed main write leaves both.
+class StagedFile {
+ public:
+  StagedFile(const std::string& path, const std::string& content);
+  ~StagedFile();
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+  void commit();
+
+ private:
+  std::string path_, tmp_;
+  std::unique_ptr<TemporaryRegistration> registration_;
+};
 
 // "PATH.tmp-XXXXXXXXXXXX": a temporary name beside `final_path` with 12 random
 // characters (from the kernel's random source), so no one can plant a link at it.

@@ -78,8 +78,11 @@ int main(int argc, char** argv) {
     if (rank == 0) {
       fc::Provenance prov;
       prov.inputs_sha256 = fc::sha256Files(spec.input_files);
+      // The ParaView view is staged first and renamed after the .h5: a full
+      // disk leaves the previous pair, never a new .h5 beside an old view.
+      fc::StagedFile view(fc::feprep::xdmfPathFor(output), fc::feprep::bodyXdmf(output, r.body));
       fc::writeFlexBody(output, r.body, fc::computeInertiaInvariants(r.body), prov);
-      fc::feprep::writeBodyXdmf(output, r.body);  // after the .h5: ParaView view of it
+      view.commit();
       printSummary(spec, r, output);
     }
     return 0;

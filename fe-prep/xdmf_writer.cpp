@@ -131,8 +131,4 @@ std::string bodyXdmf(const std::string& h5_path, const FlexBody& body) {
   return x.str();
 }
 
-void writeBodyXdmf(const std::string& h5_path, const FlexBody& body) {
-  writeFileAtomic(xdmfPathFor(h5_path), bodyXdmf(h5_path, body));
-}
-
 }  // namespace fc::feprep

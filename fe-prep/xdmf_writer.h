@@ -23,7 +23,4 @@ std::string modeFieldName(int mode_index, double frequency_hz);
 // by its file name only, so it must sit in the same directory).
 std::string bodyXdmf(const std::string& h5_path, const FlexBody& body);
 
-// Writes xdmfPathFor(h5_path) atomically. Call after the .h5 is complete.
-void writeBodyXdmf(const std::string& h5_path, const FlexBody& body);
-
 }  // namespace fc::feprep

@@ -189,6 +189,41 @@ TEST(AtomicWrite, FailedTextWriteKeepsPreviousFileAndRemovesTemporary) {
   EXPECT_EQ(fc::readTextFile(out), "previous");
 }
 
+// The two-step write fe-prep uses for its .xdmf beside the .h5: staged
+// content reaches the file only on commit(); dropped, it leaves the previous
+// file and no temporary; a failed staging leaves the previous file too.
+TEST(AtomicWrite, StagedFileChangesThePathOnlyOnCommit) {
+  const fs::path d = freshDir("staged");
+  const std::string out = (d / "a.xdmf").string();
+  fc::writeFileAtomic(out, "previous");
+  {
+    fc::StagedFile dropped(out, "new view");
+    EXPECT_EQ(listDir(d).size(), 2u);  // the file and its temporary
+    EXPECT_EQ(fc::readTextFile(out), "previous");
+  }
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"a.xdmf"});
+  EXPECT_EQ(fc::readTextFile(out), "previous");
+  fc::StagedFile kept(out, "new view");
+  kept.commit();
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"a.xdmf"});
+  EXPECT_EQ(fc::readTextFile(out), "new view");
+  const int status = inChild([&] {
+    ::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit lim {1024, 1024};
+    setrlimit(RLIMIT_FSIZE, &lim);
+    try {
+      fc::StagedFile big(out, std::string(100000, 'x'));
+    } catch (const std::runtime_error& e) {
+      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
+    }
+    _exit(9);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+  EXPECT_EQ(listDir(d), std::vector<std::string>{"a.xdmf"});
+  EXPECT_EQ(fc::readTextFile(out), "new view");
+}
+
 TEST(AtomicWrite, TemporaryNamesAreUnpredictableAndNeverFollowALink) {
   const std::string a = fc::temporaryNameFor("x.h5"), b = fc::temporaryNameFor("x.h5");
   EXPECT_NE(a, b);
