@@ -24,6 +24,12 @@ constexpr double kMaxLength = 1e6;  // m (1000 km: beyond any mechanism's scene)
 constexpr double kMaxLoad = 1e12;   // N, N m
 constexpr double kMaxSpeed = 1e6;   // m/s, rad/s
 constexpr double kMaxGravity = 1e6; // m/s^2 (1e5 g, beyond any centrifuge)
+// Spring-dampers: 1e15 N/m is a 1 m^2 steel bar 0.2 mm long, 1e12 N s/m
+// (N m s/rad) damps such a spring on a tonne critically; beyond them a value
+// is a unit mistake, and 1.7e308 made the run stop with a non-finite state
+// instead of an input error.
+constexpr double kMaxStiffness = 1e15;
+constexpr double kMaxDamping = 1e12;
 
 Vector3d vec3(const InputNode& n, double limit, const char* unit) {
   const Vector3d v = n.asVector(3);
@@ -330,7 +336,7 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     if (fe.joint < 0) jn.fail("unknown joint '" + jn.asString() + "'");
     if (m.joints[fe.joint].type != JointType::Revolute)
       jn.fail("expected a revolute joint, '" + jn.asString() + "' is not one");
-    fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
+    fe.damping = f.has("damping") ? f["damping"].asInRange(0.0, kMaxDamping, "N m s/rad") : 0.0;
     if (f.has("torque")) fe.torque = parseTable(f["torque"]);
   } else if (type == "translational_spring_damper") {
     f.allowKeys({"name", "type", "bodies", "points", "stiffness", "damping", "free_length", "enabled"});
@@ -345,8 +351,8 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.point_j = pointRef(m, fe.body_j, p.at(1), fe.shapes_j);
     if (p.at(0).isScalar()) fe.interface_i = p.at(0).asString();
     if (p.at(1).isScalar()) fe.interface_j = p.at(1).asString();
-    fe.stiffness = f["stiffness"].asNonNegative();
-    fe.damping = f.has("damping") ? f["damping"].asNonNegative() : 0.0;
+    fe.stiffness = f["stiffness"].asInRange(0.0, kMaxStiffness, "N/m");
+    fe.damping = f.has("damping") ? f["damping"].asInRange(0.0, kMaxDamping, "N s/m") : 0.0;
     fe.free_length = f["free_length"].asNonNegative();
   } else if (type == "force") {
     f.allowKeys({"name", "type", "body", "point", "force", "enabled"});

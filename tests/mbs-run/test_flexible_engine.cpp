@@ -46,6 +46,21 @@ simulation: {t_end: )" + std::to_string(t_end) + R"(, output_step: 0.01, rtol: 1
 )" + extra;
 }
 
+TEST(FlexibleEngine, DampingRatioBeyondRangeIsAnInputError) {
+  // A damping ratio of 1.7e308 (fuzz campaign, session 6) ran and stopped
+  // with a non-finite state; it is an input error at its key.
+  const std::string file = writeBody(3, 12);
+  for (const char* zeta : {"1.7e308", "-0.1", "101"}) {
+    try {
+      sceneFromText(pendulum("flexible: {file: " + file + ", modes: 3, damping_ratio: " + zeta + "}", "P0", 1.0));
+      ADD_FAILURE() << "no error for damping_ratio " << zeta;
+    } catch (const fc::InputError& e) {
+      EXPECT_NE(e.keyPath().find("damping_ratio"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("ratio of critical damping"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(FlexibleEngine, ZeroModesIsTheRigidBody) {
   const std::string file = writeBody(3, 11);
   const FlexBodyFile f = readFlexBody(file, 0);

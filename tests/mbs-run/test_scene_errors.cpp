@@ -56,6 +56,20 @@ TEST(SceneErrors, GravityBeyondPhysicalRange) {
   expectError(kHead + "forces:\n  - {type: gravity, g: [0, 0, -1e300]}\n" + kSim,
               {6, "forces[0].g", "within 1e6 m/s^2"});
 }
+TEST(SceneErrors, SpringDampersBeyondPhysicalRange) {
+  // Fuzz campaign (session 6): a damping of 1.7e308 ran and stopped with a
+  // non-finite state; it is an input error at its key.
+  const std::string joint =
+      "joints:\n  - {name: R, type: revolute, bodies: [ground, arm], points: [[0,0,0],[-0.5,0,0]], axes: [[0,0,1],[0,0,1]]}\n";
+  expectError(kHead + joint + "forces:\n  - {type: rotational_spring_damper, joint: R, damping: 1.7e308}\n" + kSim,
+              {8, "forces[0].damping", "N m s/rad"});
+  expectError(kHead + "forces:\n  - {type: translational_spring_damper, bodies: [ground, arm], points: [[0,0,0],[0.5,0,0]], "
+                      "stiffness: 1e20, free_length: 0}\n" + kSim,
+              {6, "forces[0].stiffness", "N/m"});
+  expectError(kHead + "forces:\n  - {type: translational_spring_damper, bodies: [ground, arm], points: [[0,0,0],[0.5,0,0]], "
+                      "stiffness: 10, damping: 1e13, free_length: 0}\n" + kSim,
+              {6, "forces[0].damping", "N s/m"});
+}
 TEST(SceneErrors, VectorsBeyondPhysicalRange) {
   // Fuzz campaign on the new keys (session 6): a 1e300 N force ran and then failed
   // writing an infinite peak reaction (an error naming no key); a body 1e9 m from
