@@ -68,7 +68,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
 
   const InputNode mesh = s["mesh"];
   shell.mesh_node = mesh;
-  mesh.allowKeys({"triangles", "size", "file", "max_triangles"});
+  mesh.allowKeys({"triangles", "size", "file", "max_triangles", "graded_from"});
   if (mesh.has("max_triangles")) {
     shell.max_triangles = mesh["max_triangles"].asInt();
     if (shell.max_triangles < 2) mesh["max_triangles"].fail("expected a triangle count of at least 2");
@@ -81,6 +81,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     shell.triangles = n;
   }
   if (mesh.has("size")) shell.size = mesh["size"].asLength(kMinLength, kMaxBodyLength);
+  if (mesh.has("graded_from")) shell.graded_from = mesh["graded_from"].asLength(kMinLength, kMaxBodyLength);
 
   if (mesh.has("file")) {
     if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
@@ -95,6 +96,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     }
     body.input_files.push_back(shell.geo_file);
     if (shell.triangles > 0) mesh["triangles"].fail("a triangle count applies to rectangles; use size: with a mesh file");
+    if (shell.graded_from > 0) mesh["graded_from"].fail("graded_from applies to the box patches of a rectangle, not to a mesh file");
   } else {
     const InputNode r = s["rectangle"];
     r.allowKeys({"length", "width"});

@@ -26,6 +26,7 @@ struct ShellSpec {
   long triangles = 0;  // mesh: {triangles: N}
   double size = 0.0;   // mesh: {size: h}
   long max_triangles = 500000;  // mesh: {max_triangles: N}, refused above (panel_mesher.h)
+  double graded_from = 0.0;     // mesh: {graded_from: H}: box patches refined with h below H (panel_mesher.h)
   InputNode mesh_node;
 };
 

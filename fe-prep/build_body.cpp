@@ -163,6 +163,7 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
         r.triangles = spec.shell->triangles;
         r.size = spec.shell->size;
         r.max_triangles = spec.shell->max_triangles;
+        r.box_graded_from = spec.shell->graded_from;
         for (const auto& i : spec.interfaces) {
           r.forced_points.emplace_back(i.position.x(), i.position.y());
           // Box patches on the mid-surface (z = 0) are meshed conforming: the same region at every size.

@@ -165,7 +165,8 @@ Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen:
   std::vector<double> caps;
   for (const auto& q : boxes) {
     const double dx = q(2) - q(0), dy = q(3) - q(1);
-    const double cap = r.box_size_fraction * std::min(dx, dy);
+    const double graded = r.box_graded_from > 0 ? std::min(1.0, h / r.box_graded_from) : 1.0;
+    const double cap = r.box_size_fraction * std::min(dx, dy) * graded;
     if (!(dx > tol && dy > tol) || !(cap > 0) || cap >= h) continue;
     const int f = gmsh::model::mesh::field::add("Box");
     gmsh::model::mesh::field::setNumber(f, "VIn", cap);

@@ -32,6 +32,10 @@ struct PanelMeshRequest {
   // elements across: at h = 0.1 a 25 mm bracket footprint is 0.3 elements wide and its patch's second
   // moments are +200 % off (docs/fe-prep.md, "Distributed interfaces").
   double box_size_fraction = 0.5;
+  // 0, or a mesh size H (mesh: {graded_from: H}): below H the size inside each box shrinks with h,
+  // min(h, box_size_fraction * side * h / H), so that every mesh of a sequence refined from H refines the
+  // boxes too; with the plain cap a box keeps its elements while h is above them (docs/fe-prep.md).
+  double box_graded_from = 0.0;
   bool quiet = true;
   // Refused above this (std::invalid_argument), before meshing: mesh.max_triangles.
   long max_triangles = kDefaultMaxTriangles;

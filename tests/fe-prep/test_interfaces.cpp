@@ -250,6 +250,48 @@ TEST(Interfaces, ThinBoxPatchesAreResolvedAtCoarseMeshes) {
   EXPECT_LT(capped[2], 4 * uncapped[2] + 200);
 }
 
+TEST(Interfaces, GradedBoxPatchesAreRefinedWithEveryHalving) {
+  // The same 25 mm footprint meshed at h = 0.1, 0.05, 0.025. With the plain
+  // cap its elements stay 12.5 mm (h is above that), so its second-moment
+  // excess stays at the two-element +50 % (2 / n^2, n = 2). With graded_from
+  // 0.1 they are 12.5, 6.25, 3.125 mm: n = 2, 4, 8, excess 1/2, 1/8, 1/32,
+  // 4x less per halving on a uniform split; an unstructured one scatters, so
+  // at least 2.5x (as BoxPatchesAreMeshedConformingAndWeightedByTheirArea).
+  const double x0 = 0.0, x1 = 0.025, y0 = -0.325, y1 = -0.125;
+  auto excess = [&](double h, double graded_from) {
+    PanelMeshRequest r;
+    r.length = 1.0;
+    r.width = 0.65;
+    r.size = h;
+    r.box_graded_from = graded_from;
+    r.conforming_boxes.emplace_back(x0, y0, x1, y1);
+    const Mesh mesh = meshRectangle(r);
+    std::vector<long> nodes;
+    for (long k = 0; k < mesh.nodeCount(); ++k) {
+      const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
+      if (x > x0 - 1e-12 && x < x1 + 1e-12 && y > y0 - 1e-12 && y < y1 + 1e-12) nodes.push_back(k);
+    }
+    const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+    const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2;
+    double sxx = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const double x = mesh.nodes(nodes[i], 0) - cx;
+      sxx += w(static_cast<long>(i)) * x * x;
+    }
+    return sxx / (area * (x1 - x0) * (x1 - x0) / 12) - 1;
+  };
+  std::array<double, 3> plain{}, graded{};
+  const std::array<double, 3> hs{0.1, 0.05, 0.025};
+  for (int k = 0; k < 3; ++k) plain[k] = excess(hs[k], 0.0), graded[k] = excess(hs[k], 0.1);
+  std::printf("[   info   ] 25 mm box, Ixx excess at h = 0.1 / 0.05 / 0.025: cap %.3g %.3g %.3g, graded_from 0.1 "
+              "%.3g %.3g %.3g\n", plain[0], plain[1], plain[2], graded[0], graded[1], graded[2]);
+  EXPECT_NEAR(graded[0], plain[0], 1e-12);  // at h = graded_from the two are the same mesh
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_LT(graded[k], graded[k - 1] / 2.5) << hs[k];
+    EXPECT_GT(plain[k], 0.3) << hs[k];  // the plain cap's footprint stays two elements across
+  }
+}
+
 TEST(Interfaces, BoxPatchInterfaceIsTheFitOverItsFootprint) {
   // The raised hinge pins of the test below on bracket footprints (box patches
   // 0.1 x 0.2 m cut by the short edge) through the whole fe-prep path: the

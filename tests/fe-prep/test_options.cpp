@@ -56,6 +56,24 @@ TEST(Options, GeoFileUnknownSetNamesTheReferenceLine) {
   }
 }
 
+TEST(Options, GradedFromAppliesToRectanglesOnlyAndMustBeALength) {
+  try {
+    runYaml(squareYaml("mesh: {file: " + std::string(FLEXCOMP_SOURCE_DIR) + "/meshes/square_1m.geo, graded_from: 0.1}",
+                       kSS, "modes: 3"), "graded.yaml");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.keyPath(), "body.shell.mesh.graded_from");
+    EXPECT_NE(std::string(e.what()).find("rectangle"), std::string::npos) << e.what();
+  }
+  try {
+    runYaml(squareYaml("rectangle: {length: 1.0, width: 1.0}\n    mesh: {size: 0.1, graded_from: -0.1}", kSS,
+                       "modes: 3"), "graded.yaml");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.keyPath(), "body.shell.mesh.graded_from");
+  }
+}
+
 TEST(Options, MaxFrequencyReturnsExactlyTheModesBelowIt) {
   // Navier: 48.4, 121.0 (twice), 193.6 Hz ... so 150 Hz keeps three modes and
   // 300 Hz keeps (1,1), (1,2), (2,1), (2,2), (1,3), (3,1): six (240, 242 Hz),
