@@ -82,7 +82,7 @@ TRUSSES = {f"B{k}": f"truss_B{k}" for k in range(4, 13)}
 # against the mesh: discs of 25-30 mm (the largest that fit between S2/S6 and S12/S14 unsplit) held 1-7
 # nodes on meshes up to h = 0.0125 and the successive meshes did not converge (1.2e-3 then 2.5e-3 rad, see
 # docs/accuracy-cb.md); fe-prep also meshes inside each footprint at most half its smaller side, so even the
-# thinnest (S12, 25 mm) is two elements across at the coarse meshes. H23 (stop-only revolute, active only after alignment) stays on one node, outside the
+# thinnest (S12, 25 mm) is two elements across at the coarsest mesh, and finer with h (CB_GRADED_FROM). H23 (stop-only revolute, active only after alignment) stays on one node, outside the
 # boundary. The mesh is set by its size h (halved per step), the modes by the fixed-interface count; a
 # different count is a different basis, so each (mesh, modes) pair has its own body file.
 CB_FOOTPRINT = 0.1
@@ -90,13 +90,18 @@ CB_GAP = 0.01  # between split footprints: their outlines are mesh lines, and he
 CB_NOT_BOUNDARY = ("H23",)
 CB_BASE = dict(tri=0.025, modes=8, truss=2, rtol=1e-6, integ="dopri5", preset=None)
 # The reference keeps the base's 8 modes (its mode error is estimated from the mode sequence at the base
-# mesh instead of a second fine basis). Its own mesh error is measured against one finer mesh,
-# CB_CHECK_MESH (160 000 triangles per panel), run without the scene's contact monitor: the monitor is an
-# output (distances), it does not act on the dynamics (checked: the reference's mesh with and without it),
-# and at that mesh it would cost ~20 ms per step. These runs stay out of the Pareto front (no monitor).
+# mesh instead of a second fine basis). Its own mesh error could be measured against one finer mesh,
+# CB_CHECK_MESH, run without the scene's contact monitor (an output: distances; it does not act on the
+# dynamics). None: graded from h = 0.1, h = 0.00625 has ~300 000 triangles per panel and fe-prep's
+# Craig-Bampton solve passed 17 GB on it (the shared 24 GB machine); the sequence's tail estimates it.
 CB_REF = dict(CB_BASE, tri=0.0125, rtol=1e-7)
-CB_CHECK_MESH = 0.00625
+CB_CHECK_MESH = None
 CB_MESHES = [0.1, 0.05, 0.025, 0.0125]
+# The mesh family is graded from its coarsest mesh (fe-prep mesh: {graded_from: CB_GRADED_FROM}): inside
+# each footprint the elements are half its smaller side at h = 0.1 and shrink with h, so every halving
+# refines the footprints too. With the plain cap (half the smaller side at every h) the halving 0.1 -> 0.05
+# refined no footprint and moved R3 by 1.7e-4 rad, the next one by 5.6e-4 (docs/fe-prep.md).
+CB_GRADED_FROM = CB_MESHES[0]
 CB_PANEL_MODES = [2, 4, 8, 16, 32]
 # Which panel's modes the mode sequence waits for: panel 3's fixed-interface count alone (key "p3"), panel 2
 # keeping CB_SPLIT_OTHER, against both at CB_SPLIT_OTHER (group "panel 3 modes"; out of the Pareto fronts).
@@ -246,7 +251,7 @@ def make_panels(args, tri, cb_modes=None):
         if is_cb(args):
             stem = f"{panel}_h{tri:g}_cb{cb_modes}"
             spec["body"]["name"] = stem
-            spec["body"]["shell"]["mesh"] = {"size": tri, "max_triangles": 400000}
+            spec["body"]["shell"]["mesh"] = {"size": tri, "max_triangles": 400000, "graded_from": CB_GRADED_FROM}
             spec["body"]["modes"] = cb_modes
             boundary = cb_footprints(spec["body"]["interfaces"])
             for name, box in boundary.items():
@@ -965,23 +970,24 @@ def cb_convergence_text(args, R):
         L.append(f"| {h:g} | {g['nodes']} | {g['area']:.1e} | {1000 * g['centre']:.1e} | +{100 * g['second']:.1f} % |")
     thin = thinnest_footprint()
     L.append(f"\nEvery mesh models the same brackets: area and centre exact (rounding). The second moments (how the "
-             f"fit spreads a moment over the patch) are those of the footprint only once the mesh resolves it. "
-             f"fe-prep caps the element size inside each footprint at half its smaller side (docs/fe-prep.md), so "
-             f"the thinnest footprint, {1000 * thin:.0f} mm across (S12, between the panel corner and S14), is "
-             f"{', '.join(f'{thin / min(h, 0.5 * thin):.1f}' for h in levels)} elements across at these meshes "
-             f"(without the cap {', '.join(f'{thin / h:.1f}' for h in levels)}).\n")
+             f"fit spreads a moment over the patch) are those of the footprint only once the mesh resolves it: the "
+             f"thinnest footprint, {1000 * thin:.0f} mm across (S12, between the panel corner and S14), is "
+             f"{', '.join(f'{thin / min(h, 0.5 * thin * min(1.0, h / CB_GRADED_FROM)):.0f}' for h in levels)} "
+             f"elements across at these meshes (docs/fe-prep.md; with a uniform mesh "
+             f"{', '.join(f'{thin / h:.1f}' for h in levels)}).\n")
     sides = footprint_sides()
     wide = max(set(sides), key=sides.count)  # the usual footprint (most of them)
-    cap = lambda side, h: min(h, 0.5 * side)  # noqa: E731  fe-prep's element size inside a footprint
+    cap = lambda side, h: min(h, 0.5 * side * min(1.0, h / CB_GRADED_FROM))  # noqa: E731  fe-prep's, in a footprint
     same = [k for k in range(len(levels) - 1) if cap(wide, levels[k]) == cap(wide, levels[k + 1])]
-    L.append(f"Inside a footprint fe-prep's elements are at most half its smaller side, so a halving of h refines a "
-             f"footprint only where h is below that: the {1000 * wide:.0f} mm-wide footprints ({sides.count(wide)} of "
+    L.append(f"Inside a footprint fe-prep's elements are at most half its smaller side at h = {CB_GRADED_FROM:g} m and "
+             f"shrink with h below it (`graded_from: {CB_GRADED_FROM:g}`), so every halving refines the footprints too: "
+             f"the {1000 * wide:.0f} mm-wide footprints ({sides.count(wide)} of "
              f"{len(sides)}) have {', '.join(f'{1000 * cap(wide, h):g}' for h in levels)} mm elements at these meshes, "
              f"the thinnest {', '.join(f'{1000 * cap(min(sides), h):g}' for h in levels)} mm. "
              + ("".join(f"The halving {levels[k]:g} -> {levels[k + 1]:g}, which leaves those footprints' elements as "
                         f"they were, moves R3 by {fmt(mesh_d[k])} rad; " for k in same)
                 if same else "")
-             + "the halvings that refine them move it by "
+             + ("the" if same else "The") + " halvings that refine them move R3 by "
              + ", ".join(f"{fmt(mesh_d[k])} ({levels[k]:g} -> {levels[k + 1]:g})" for k in range(len(mesh_d)) if k not in same)
              + " rad.\n")
     i = steady_from(mesh_d)
@@ -1044,7 +1050,8 @@ def cb_convergence_text(args, R):
     L.append(f"The reference (h = {REF['tri']:g} m) is {fmt(conv)} rad in R3 before alignment from the next-coarser "
              + (f"mesh and {fmt(mesh_d[-1])} rad from the next-finer one (h = {CB_CHECK_MESH:g} m)" if CB_CHECK_MESH
                 else "mesh") + ". Its remaining error "
-             f"(the finer mesh's distance plus the sequences continued geometrically with their last ratio; the "
+             + ("(the finer mesh's distance plus the sequences" if CB_CHECK_MESH else "(the sequences")
+             + f" continued geometrically with their last ratio; the "
              f"modes' from the sequence at h = {BASE['tri']:g} m, beyond the reference's {REF['modes']} modes): "
              f"{fmt(tails[0])} rad (mesh) + {fmt(tails[1])} rad (modes) = {fmt(total)} rad: "
              + ("converged to better than 1e-3 rad." if total < 1e-3 else "NOT converged to 1e-3 rad.") + "\n")
