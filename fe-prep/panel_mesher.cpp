@@ -111,11 +111,39 @@ void checkTriangleCount(double estimate, long limit, const std::string& how) {
   }
 }
 
+// The element size inside box q at mesh size h (box_size_fraction, box_graded_from), or 0 for none:
+// boxes thin enough to be a line, and caps at or above h.
+double boxCap(const PanelMeshRequest& r, const Eigen::Vector4d& q, double h) {
+  const double tol = 1e-9 * std::max(r.length, r.width);
+  const double dx = q(2) - q(0), dy = q(3) - q(1);
+  if (!(dx > tol && dy > tol)) return 0.0;
+  const double graded = r.box_graded_from > 0 ? std::min(1.0, h / r.box_graded_from) : 1.0;
+  const double cap = r.box_size_fraction * std::min(dx, dy) * graded;
+  return cap > 0 && cap < h ? cap : 0.0;
+}
+
+// A thin box's cap can ask for millions of triangles: its area at the cap plus the graded ring
+// around it (size growing linearly from cap to h over h: about perimeter / (sqrt(3)/4 cap)),
+// checked against the limit before gmsh runs.
+void checkBoxCaps(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h) {
+  double estimate = r.length * r.width / (std::sqrt(3.0) / 4 * h * h), capped = 0;
+  for (const auto& q : boxes)
+    if (const double cap = boxCap(r, q, h); cap > 0) {
+      estimate += ((q(2) - q(0)) * (q(3) - q(1)) / cap + 2 * (q(2) - q(0) + q(3) - q(1))) / (std::sqrt(3.0) / 4 * cap);
+      capped = capped == 0 ? cap : std::min(capped, cap);
+    }
+  if (capped > 0)
+    checkTriangleCount(estimate, r.max_triangles,
+                       "size " + std::to_string(h) + " m with elements of " + std::to_string(capped) +
+                           " m inside the thinnest box patch (half its smaller side)");
+}
+
 Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h);
 
 Mesh meshRectangleOnce(const PanelMeshRequest& r, const std::vector<Eigen::Vector2d>& edge_pts,
                        const std::vector<Eigen::Vector2d>& interior, const std::vector<Eigen::Vector4d>& boxes,
                        double h) {
+  if (!boxes.empty()) checkBoxCaps(r, boxes, h);
   return withGmsh("rectangular panel", [&] {
     return boxes.empty() ? meshRectangleGmsh(r, edge_pts, interior, h) : meshRectangleConforming(r, boxes, h);
   });
@@ -136,10 +164,10 @@ void addEdgeSets(Mesh& mesh, double a, double b, double tol) {
 // BooleanFragments: intersecting or touching boxes, points on box outlines and on the
 // rectangle's edges are all resolved by the kernel), every face meshed with size h.
 Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h) {
-  GmshSession session(r.quiet);
-  gmsh::model::add("panel");
   const double a = r.length / 2, b = r.width / 2;
   const double tol = 1e-9 * std::max(r.length, r.width);
+  GmshSession session(r.quiet);
+  gmsh::model::add("panel");
   const int panel = gmsh::model::occ::addRectangle(-a, -b, 0.0, r.length, r.width);
   gmsh::vectorpair tools;
   for (const auto& q : boxes) {
@@ -164,10 +192,8 @@ Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen:
   // the outline's nodes, on it to rounding, count as inside.
   std::vector<double> caps;
   for (const auto& q : boxes) {
-    const double dx = q(2) - q(0), dy = q(3) - q(1);
-    const double graded = r.box_graded_from > 0 ? std::min(1.0, h / r.box_graded_from) : 1.0;
-    const double cap = r.box_size_fraction * std::min(dx, dy) * graded;
-    if (!(dx > tol && dy > tol) || !(cap > 0) || cap >= h) continue;
+    const double cap = boxCap(r, q, h);
+    if (cap == 0.0) continue;
     const int f = gmsh::model::mesh::field::add("Box");
     gmsh::model::mesh::field::setNumber(f, "VIn", cap);
     gmsh::model::mesh::field::setNumber(f, "VOut", h);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "fe-prep/interfaces.h"
@@ -289,6 +290,24 @@ TEST(Interfaces, GradedBoxPatchesAreRefinedWithEveryHalving) {
   for (int k = 1; k < 3; ++k) {
     EXPECT_LT(graded[k], graded[k - 1] / 2.5) << hs[k];
     EXPECT_GT(plain[k], 0.3) << hs[k];  // the plain cap's footprint stays two elements across
+  }
+}
+
+TEST(Interfaces, ABoxTooThinForTheTriangleLimitIsRefusedBeforeMeshing) {
+  // A 1 um x 0.2 m box would be meshed at 0.5 um inside: about 4e11 triangles.
+  // It is refused with the limit in the message, before gmsh runs (which would
+  // not end).
+  PanelMeshRequest r;
+  r.length = 1.0;
+  r.width = 0.65;
+  r.size = 0.1;
+  r.conforming_boxes.emplace_back(0.0, -0.325, 1e-6, -0.125);
+  try {
+    meshRectangle(r);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("box patch"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("max_triangles"), std::string::npos) << e.what();
   }
 }
 
