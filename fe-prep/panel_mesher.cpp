@@ -132,10 +132,11 @@ void checkBoxCaps(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>&
       estimate += ((q(2) - q(0)) * (q(3) - q(1)) / cap + 2 * (q(2) - q(0) + q(3) - q(1))) / (std::sqrt(3.0) / 4 * cap);
       capped = capped == 0 ? cap : std::min(capped, cap);
     }
-  if (capped > 0)
-    checkTriangleCount(estimate, r.max_triangles,
-                       "size " + std::to_string(h) + " m with elements of " + std::to_string(capped) +
-                           " m inside the thinnest box patch (half its smaller side)");
+  if (capped > 0) {
+    std::ostringstream how;
+    how << "size " << h << " m with elements of " << capped << " m inside the thinnest box patch (half its smaller side)";
+    checkTriangleCount(estimate, r.max_triangles, how.str());
+  }
 }
 
 Mesh meshRectangleConforming(const PanelMeshRequest& r, const std::vector<Eigen::Vector4d>& boxes, double h);
