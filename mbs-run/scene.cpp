@@ -1,7 +1,9 @@
 #include "mbs-run/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include "common/rotations.h"
 #include "mbs-run/contact_tree.h"
@@ -109,6 +111,40 @@ void parseInertia(const InputNode& b, Body& body) {
   }
   body.com.setZero();
 }
+// Initial modal coordinates and rates (kg^1/2 m, per mass-normalised mode)
+// are hard to judge by eye: bound what they do at the body's interfaces. A
+// deflection beyond 10 times the body's size or a turn beyond 10 rad is far
+// outside linear modes and a unit mistake (1e9 on a pinned-pinned beam turned
+// its ends by 1e10 rad and ran for minutes at 1e-7 s steps, fuzz campaign); a
+// rate beyond kMaxSpeed as for any body.
+void checkInitialModalState(const FlexibleBodyData& f, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                            const InputNode& b) {
+  const InertiaInvariants& inv = f.inertia;
+  const Eigen::Vector3d c = inv.centerOfMass();
+  const Eigen::Matrix3d Ic = inv.inertiaAboutOrigin() - inv.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  double size = std::sqrt(std::max(Ic.trace(), 0.0) / inv.mass);
+  for (const FlexInterface& it : f.interfaces) size = std::max(size, (it.position - c).norm());
+  for (const FlexInterface& it : f.interfaces) {
+    if (it.shapes.rows() != q.size()) continue;
+    const double u = (it.shapes.leftCols(3).transpose() * q).norm();
+    const double th = (it.shapes.rightCols(3).transpose() * q).norm();
+    if (!(u <= 10.0 * size) || !(th <= 10.0)) {
+      std::ostringstream os;
+      os << "these modal coordinates deflect interface " << it.name << " by " << u << " m and turn it by " << th
+         << " rad (limits: 10 times the body's size, " << 10.0 * size
+         << " m, and 10 rad): linear modes describe small deflections; check the units (kg^1/2 m per "
+            "mass-normalised mode)";
+      b["modal_coordinates"].fail(os.str());
+    }
+    const double v = (it.shapes.leftCols(3).transpose() * qd).norm();
+    if (!(v <= kMaxSpeed)) {
+      std::ostringstream os;
+      os << "these modal rates move interface " << it.name << " at " << v << " m/s, beyond " << kMaxSpeed << " m/s";
+      b["modal_velocities"].fail(os.str());
+    }
+  }
+}
+
 
 Body parseBody(const InputNode& b) {
   b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
@@ -163,6 +199,7 @@ Body parseBody(const InputNode& b) {
   };
   initialModal("modal_coordinates", body.modal_coordinates);
   initialModal("modal_velocities", body.modal_velocities);
+  if (body.flex) checkInitialModalState(*body.flex, body.modal_coordinates, body.modal_velocities, b);
   return body;
 }
 

@@ -61,6 +61,30 @@ TEST(FlexibleEngine, DampingRatioBeyondRangeIsAnInputError) {
   }
 }
 
+TEST(FlexibleEngine, InitialModalStateBeyondLinearModesIsAnInputError) {
+  // modal_coordinates of 1e9 (fuzz smoke, session 7) turned a beam's ends by
+  // 1.5e10 rad and ran for minutes at 1e-7 s steps: refused at the key,
+  // while small values (what the modal-oscillator tests use) run.
+  const std::string file = writeBody(3, 13);
+  // Assembled as in FlexiblePendulumConservesEnergy: P0 at the pivot.
+  const Eigen::Vector3d p0 = readFlexBody(file, 3).body.interfaces[0].position;
+  const Eigen::Matrix3d A = fc::rotationMatrix(Eigen::Vector4d(0.9, 0.3, -0.2, 0.24494897427831783));
+  const auto scene = [&](const std::string& extra) {
+    return pendulum("position: " + yamlVector(-A * p0) + "\n    flexible: {file: " + file + ", modes: 3}\n    " + extra,
+                    "P0", 0.01);
+  };
+  for (const char* bad : {"modal_coordinates: [1.0e9, 0, 0]", "modal_velocities: [0, 1.0e12, 0]"}) {
+    try {
+      sceneFromText(scene(bad));
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const fc::InputError& e) {
+      EXPECT_NE(e.keyPath().find(std::string(bad).substr(0, 12)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("interface P"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(simulate(sceneFromText(scene("modal_coordinates: [1.0e-3, 0, 0]")), {true}).status, "completed");
+}
+
 TEST(FlexibleEngine, ZeroModesIsTheRigidBody) {
   const std::string file = writeBody(3, 11);
   const FlexBodyFile f = readFlexBody(file, 0);
