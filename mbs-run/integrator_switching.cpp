@@ -6,6 +6,18 @@
 #include "mbs-run/switch_trial.h"
 
 namespace fc::mbs {
+
+double absoluteTolerance(const Settings& st) { return st.atol > 0 ? st.atol : 1e-3 * st.rtol; }
+
+Tolerances tolerances(const Settings& st, int size) {
+  Tolerances tol;
+  tol.rtol = st.rtol;
+  tol.atol = absoluteTolerance(st);
+  tol.max_step = st.max_step > 0 ? st.max_step : 10.0 * st.output_step;
+  tol.mask = Eigen::VectorXd::Ones(size);
+  tol.mask.tail(2).setZero();
+  return tol;
+}
 namespace {
 // `imex`'s tableau by tolerance (docs/mbs-run.md, Integrators): order 4 from
 // rtol 1e-5 down, where its longer steps pay for its six stages (stiff beam

@@ -8,12 +8,12 @@
 
 #include "common/progress.h"
 #include "common/termination.h"
+#include "mbs-run/consistent_start.h"
 #include "mbs-run/crossings.h"
 #include "mbs-run/events.h"
 #include "mbs-run/finite_guard.h"
 #include "mbs-run/integrator_switching.h"
 #include "mbs-run/joint_limits.h"
-#include "mbs-run/consistent_start.h"
 #include "mbs-run/run_quality.h"
 #include "mbs-run/tree_simulation.h"
 
@@ -98,19 +98,6 @@ Sample History::row(std::size_t i) const {
 }
 
 namespace {
-
-// Error control on positions and velocities (atol in m, rad, m/s, rad/s).
-Tolerances tolerances(const Settings& st, int size) {
-  Tolerances tol;
-  tol.rtol = st.rtol;
-  tol.atol = st.atol > 0 ? st.atol : 1e-3 * st.rtol;
-  // Default step limit: ten output intervals, so that a joint-angle event cannot
-  // hide two crossings inside one long step of a slow motion.
-  tol.max_step = st.max_step > 0 ? st.max_step : 10.0 * st.output_step;
-  tol.mask = VectorXd::Ones(size);
-  tol.mask.tail(2).setZero();  // energy quadratures are diagnostics, not controlled
-  return tol;
-}
 
 // Projects an accepted state onto the constraints when its drift is one the
 // error control could see: below a tenth of atol (in m, rad, m/s, rad/s) the

@@ -141,8 +141,7 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
   try {
     // The constrained path's consistent start (simulation.cpp), then the
     // tree's coordinates there.
-    const double tol_atol = st.atol > 0 ? st.atol : 1e-3 * st.rtol;
-    VectorXd y = consistentStart(sys, tol_atol);
+    VectorXd y = consistentStart(sys, absoluteTolerance(st));
     std::vector<BodyPose> P0;
     sys.poses(y, P0);
     std::vector<JointRuntime> runtimes;
@@ -154,12 +153,7 @@ RunSummary simulateTree(const Model& model, const RunOptions& options, SampleSin
 
     // Error control on angles [rad] (or slides [m]) and their rates, as the
     // constrained path's on positions and velocities.
-    Tolerances tol;
-    tol.rtol = st.rtol;
-    tol.atol = tol_atol;
-    tol.max_step = st.max_step > 0 ? st.max_step : 10.0 * st.output_step;
-    tol.mask = VectorXd::Ones(2 * n + 2);
-    tol.mask.tail(2).setZero();
+    const Tolerances tol = tolerances(st, 2 * n + 2);
     int non_finite = 0;
     bool watch_signals = false;  // from the initial row on, as FiniteGuard::watchSignals
     const Rhs rhs = [&](double, const VectorXd& zz, VectorXd& zd) {
