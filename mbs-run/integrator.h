@@ -63,9 +63,6 @@ class Integrator {
   long steps = 0, rejected = 0;
 };
 
-// The step to try from t towards t + span: the controller's h, capped by
-// max_step and stretched to land exactly on the limit rather than leave a
-// sliver; 0 when it falls below the round-off floor at t (the integrator gives up).
 // The smallest step that still moves t by more than its rounding.
 inline double minimumStep(double t) { return 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t)); }
 // A starting step guess no smaller than 100 minimum steps: the guesses scale
@@ -75,6 +72,9 @@ inline double minimumStep(double t) { return 16.0 * std::numeric_limits<double>:
 // guess too large is only rejected and shrunk.
 inline double startingStep(double h_guess, double t) { return std::max(h_guess, 100.0 * minimumStep(t)); }
 
+// The step to try from t towards t + span: the controller's h, capped by
+// max_step and stretched to land exactly on the limit rather than leave a
+// sliver; 0 when it falls below the round-off floor at t (the integrator gives up).
 inline double nextStepSize(double h_controller, double t, double span, const Tolerances& tol) {
   const double hmin = minimumStep(t);
   double h = std::min(h_controller, span);

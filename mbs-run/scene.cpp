@@ -111,19 +111,19 @@ void parseInertia(const InputNode& b, Body& body) {
   }
   body.com.setZero();
 }
+
 // Initial modal coordinates and rates (kg^1/2 m, per mass-normalised mode)
 // are hard to judge by eye: bound what they do at the body's interfaces. A
 // deflection beyond 10 times the body's size or a turn beyond 10 rad is far
 // outside linear modes and a unit mistake (1e9 on a pinned-pinned beam turned
 // its ends by 1e10 rad and ran for minutes at 1e-7 s steps, fuzz campaign); a
 // rate beyond kMaxSpeed as for any body.
-void checkInitialModalState(const FlexibleBodyData& f, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                            const InputNode& b) {
-  const InertiaInvariants& inv = f.inertia;
-  const Eigen::Vector3d c = inv.centerOfMass();
-  const Eigen::Matrix3d Ic = inv.inertiaAboutOrigin() - inv.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  double size = std::sqrt(std::max(Ic.trace(), 0.0) / inv.mass);
-  for (const FlexInterface& it : f.interfaces) size = std::max(size, (it.position - c).norm());
+void checkInitialModalState(const Body& body, const InputNode& b) {
+  const FlexibleBodyData& f = *body.flex;
+  const Eigen::VectorXd& q = body.modal_coordinates;
+  const Eigen::VectorXd& qd = body.modal_velocities;
+  double size = std::sqrt(std::max(body.inertia_com.trace(), 0.0) / body.mass);
+  for (const FlexInterface& it : f.interfaces) size = std::max(size, (it.position - body.com).norm());
   for (const FlexInterface& it : f.interfaces) {
     if (it.shapes.rows() != q.size()) continue;
     const double u = (it.shapes.leftCols(3).transpose() * q).norm();
@@ -144,7 +144,6 @@ void checkInitialModalState(const FlexibleBodyData& f, const Eigen::VectorXd& q,
     }
   }
 }
-
 
 Body parseBody(const InputNode& b) {
   b.allowKeys({"name", "rigid", "rod", "plate", "flexible", "fixed", "position", "orientation", "velocity",
@@ -199,7 +198,7 @@ Body parseBody(const InputNode& b) {
   };
   initialModal("modal_coordinates", body.modal_coordinates);
   initialModal("modal_velocities", body.modal_velocities);
-  if (body.flex) checkInitialModalState(*body.flex, body.modal_coordinates, body.modal_velocities, b);
+  if (body.flex) checkInitialModalState(body, b);
   return body;
 }
 
