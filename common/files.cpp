@@ -117,7 +117,7 @@ StagedFile::StagedFile(const std::string& path, const std::string& content) : pa
     if (fd < 0 && errno != EEXIST) break;
   }
   if (fd < 0) throw std::runtime_error("cannot create " + tmp_ + ": " + osReason(errno));
-  registration_ = std::make_unique<TemporaryRegistration>(tmp_);
+  registration_ = TemporaryRegistration(tmp_);
   auto fail = [&](const std::string& what, int err) {
     if (fd >= 0) ::close(fd);
     ::unlink(tmp_.c_str());
@@ -157,7 +157,7 @@ void StagedFile::commit() {
                              " left unchanged)");
   }
   tmp_.clear();
-  registration_->release();
+  registration_.release();
   fsyncDirectoryOf(path_);
 }
 

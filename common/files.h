@@ -1,7 +1,6 @@
 #pragma once
 // Small file utilities shared by the tools: hashing inputs, atomic writes, and the
 // checks on an output path every tool makes before it starts computing.
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,7 +39,7 @@ class StagedFile {
 
  private:
   std::string path_, tmp_;
-  std::unique_ptr<TemporaryRegistration> registration_;
+  TemporaryRegistration registration_;
 };
 
 // "PATH.tmp-XXXXXXXXXXXX": a temporary name beside `final_path` with 12 random
