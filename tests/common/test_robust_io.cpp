@@ -49,6 +49,25 @@ int inChild(F body) {
   return status;
 }
 
+// Runs write() in a child whose files may not exceed `limit` bytes (SIGXFSZ
+// ignored, so the write fails with EFBIG): its wait status, exit 7 when an
+// exception E names the OS reason "File too large", 8 when E says something
+// else, 9 when nothing was thrown.
+template <class E, class F>
+int writeBeyondFileSizeLimit(rlim_t limit, F write) {
+  return inChild([&] {
+    ::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit lim {limit, limit};
+    setrlimit(RLIMIT_FSIZE, &lim);
+    try {
+      write();
+    } catch (const E& e) {
+      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
+    }
+    _exit(9);
+  });
+}
+
 void writeGood(const std::string& path, double value) {
   fc::AtomicH5Writer w(path);
   w.file().writeScalar("/value", value);
@@ -146,19 +165,11 @@ TEST(AtomicWrite, FailedHdf5WriteKeepsPreviousFileAndRemovesTemporary) {
   const std::string out = (d / "body.h5").string();
   writeGood(out, 42.0);
   const std::string before = fc::readTextFile(out);
-  const int status = inChild([&] {
-    ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG
-    struct rlimit lim {64 * 1024, 64 * 1024};
-    setrlimit(RLIMIT_FSIZE, &lim);
-    try {
-      fc::AtomicH5Writer w(out);
-      w.file().writeMatrix("/big", Eigen::MatrixXd::Ones(200, 200));  // 320 kB
-      w.commit();
-    } catch (const fc::H5Error& e) {
-      // The OS reason reaches the message.
-      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
-    }
-    _exit(9);
+  // The OS reason reaches the message.
+  const int status = writeBeyondFileSizeLimit<fc::H5Error>(64 * 1024, [&] {
+    fc::AtomicH5Writer w(out);
+    w.file().writeMatrix("/big", Eigen::MatrixXd::Ones(200, 200));  // 320 kB
+    w.commit();
   });
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 7);
@@ -172,17 +183,8 @@ TEST(AtomicWrite, FailedTextWriteKeepsPreviousFileAndRemovesTemporary) {
   const fs::path d = freshDir("efbig-txt");
   const std::string out = (d / "a.txt").string();
   fc::writeFileAtomic(out, "previous");
-  const int status = inChild([&] {
-    ::signal(SIGXFSZ, SIG_IGN);
-    struct rlimit lim {1024, 1024};
-    setrlimit(RLIMIT_FSIZE, &lim);
-    try {
-      fc::writeFileAtomic(out, std::string(100000, 'x'));
-    } catch (const std::runtime_error& e) {
-      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
-    }
-    _exit(9);
-  });
+  const int status =
+      writeBeyondFileSizeLimit<std::runtime_error>(1024, [&] { fc::writeFileAtomic(out, std::string(100000, 'x')); });
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 7);
   EXPECT_EQ(listDir(d), std::vector<std::string>{"a.txt"});
@@ -207,17 +209,8 @@ TEST(AtomicWrite, StagedFileChangesThePathOnlyOnCommit) {
   kept.commit();
   EXPECT_EQ(listDir(d), std::vector<std::string>{"a.xdmf"});
   EXPECT_EQ(fc::readTextFile(out), "new view");
-  const int status = inChild([&] {
-    ::signal(SIGXFSZ, SIG_IGN);
-    struct rlimit lim {1024, 1024};
-    setrlimit(RLIMIT_FSIZE, &lim);
-    try {
-      fc::StagedFile big(out, std::string(100000, 'x'));
-    } catch (const std::runtime_error& e) {
-      _exit(std::string(e.what()).find("File too large") != std::string::npos ? 7 : 8);
-    }
-    _exit(9);
-  });
+  const int status =
+      writeBeyondFileSizeLimit<std::runtime_error>(1024, [&] { fc::StagedFile big(out, std::string(100000, 'x')); });
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 7);
   EXPECT_EQ(listDir(d), std::vector<std::string>{"a.xdmf"});

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "fe-prep/interfaces.h"
 #include "fe-prep/panel_mesher.h"
@@ -29,6 +30,33 @@ body:
          std::to_string(size) + R"(}}
   interfaces:
 )" + interfaces + "  reference: " + reference + "\n  modes: " + std::to_string(modes) + "\n";
+}
+
+// A box patch's area weights (patchAreaWeights) summed as the moments the
+// fit spreads loads with: sum w, sum w x, sum w y, and the second moments
+// about (cx, cy), to compare with the box's own.
+struct WeightMoments {
+  double s, sx, sy, sxx, syy;
+};
+WeightMoments weightMoments(const Mesh& mesh, const std::vector<long>& nodes, double cx, double cy) {
+  const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+  WeightMoments m{0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double wi = w(static_cast<long>(i)), x = mesh.nodes(nodes[i], 0), y = mesh.nodes(nodes[i], 1);
+    m.s += wi, m.sx += wi * x, m.sy += wi * y, m.sxx += wi * (x - cx) * (x - cx), m.syy += wi * (y - cy) * (y - cy);
+  }
+  return m;
+}
+
+// The nodes in the box [x0, x1] x [y0, y1], its outline included (to 1e-12 m).
+std::vector<long> nodesInBox(const Mesh& mesh, double x0, double y0, double x1, double y1) {
+  const double tol = 1e-12;
+  std::vector<long> nodes;
+  for (long k = 0; k < mesh.nodeCount(); ++k) {
+    const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
+    if (x > x0 - tol && x < x1 + tol && y > y0 - tol && y < y1 + tol) nodes.push_back(k);
+  }
+  return nodes;
 }
 
 TEST(Interfaces, DistributingMapReproducesRigidMotionsAndBalancesLoads) {
@@ -172,13 +200,8 @@ TEST(Interfaces, BoxPatchesAreMeshedConformingAndWeightedByTheirArea) {
         for (long k : t) in += side(k) > 0, out += side(k) < 0;
         EXPECT_FALSE(in > 0 && out > 0) << "a triangle straddles box " << x0 << " " << y0 << ", h " << h;
       }
-      const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
       const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-      double s = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
-      for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const double wi = w(static_cast<long>(i)), x = mesh.nodes(nodes[i], 0), y = mesh.nodes(nodes[i], 1);
-        s += wi, sx += wi * x, sy += wi * y, sxx += wi * (x - cx) * (x - cx), syy += wi * (y - cy) * (y - cy);
-      }
+      const auto [s, sx, sy, sxx, syy] = weightMoments(mesh, nodes, cx, cy);
       // Sums of a few dozen areas: rounding only.
       EXPECT_NEAR(s / area, 1.0, 1e-12) << h;
       EXPECT_NEAR(sx / area, cx, 1e-12) << h;
@@ -220,19 +243,9 @@ TEST(Interfaces, ThinBoxPatchesAreResolvedAtCoarseMeshes) {
     r.box_size_fraction = fraction;
     r.conforming_boxes.emplace_back(x0, y0, x1, y1);
     const Mesh mesh = meshRectangle(r);
-    std::vector<long> nodes;
-    const double tol = 1e-12;
-    for (long k = 0; k < mesh.nodeCount(); ++k) {
-      const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
-      if (x > x0 - tol && x < x1 + tol && y > y0 - tol && y < y1 + tol) nodes.push_back(k);
-    }
-    const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
+    const std::vector<long> nodes = nodesInBox(mesh, x0, y0, x1, y1);
     const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-    double s = 0, sx = 0, sy = 0, sxx = 0, syy = 0;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const double wi = w(static_cast<long>(i)), x = mesh.nodes(nodes[i], 0), y = mesh.nodes(nodes[i], 1);
-      s += wi, sx += wi * x, sy += wi * y, sxx += wi * (x - cx) * (x - cx), syy += wi * (y - cy) * (y - cy);
-    }
+    const auto [s, sx, sy, sxx, syy] = weightMoments(mesh, nodes, cx, cy);
     EXPECT_NEAR(s / area, 1.0, 1e-12) << fraction;  // conforming either way: area and centre exact
     EXPECT_NEAR(sx / area, cx, 1e-12) << fraction;
     EXPECT_NEAR(sy / area, cy, 1e-12) << fraction;
@@ -267,19 +280,9 @@ TEST(Interfaces, GradedBoxPatchesAreRefinedWithEveryHalving) {
     r.box_graded_from = graded_from;
     r.conforming_boxes.emplace_back(x0, y0, x1, y1);
     const Mesh mesh = meshRectangle(r);
-    std::vector<long> nodes;
-    for (long k = 0; k < mesh.nodeCount(); ++k) {
-      const double x = mesh.nodes(k, 0), y = mesh.nodes(k, 1);
-      if (x > x0 - 1e-12 && x < x1 + 1e-12 && y > y0 - 1e-12 && y < y1 + 1e-12) nodes.push_back(k);
-    }
-    const Eigen::VectorXd w = patchAreaWeights(mesh, nodes);
-    const double area = (x1 - x0) * (y1 - y0), cx = (x0 + x1) / 2;
-    double sxx = 0;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const double x = mesh.nodes(nodes[i], 0) - cx;
-      sxx += w(static_cast<long>(i)) * x * x;
-    }
-    return sxx / (area * (x1 - x0) * (x1 - x0) / 12) - 1;
+    const double area = (x1 - x0) * (y1 - y0);
+    const WeightMoments m = weightMoments(mesh, nodesInBox(mesh, x0, y0, x1, y1), (x0 + x1) / 2, (y0 + y1) / 2);
+    return m.sxx / (area * (x1 - x0) * (x1 - x0) / 12) - 1;
   };
   std::array<double, 3> plain{}, graded{};
   const std::array<double, 3> hs{0.1, 0.05, 0.025};
