@@ -880,17 +880,6 @@ def patch_geometry(args, h, modes):
     return g
 
 
-def thinnest_footprint():
-    """The smallest side of any bracket footprint, clipped to its panel [m]."""
-    sides = []
-    for panel in PANELS.values():
-        spec = yaml.safe_load(open(os.path.join(HERE, "bodies", panel + ".yaml")))
-        size = np.array([spec["body"]["shell"]["rectangle"]["length"], spec["body"]["shell"]["rectangle"]["width"]]) / 2
-        for lo, hi in cb_footprints(spec["body"]["interfaces"]).values():
-            sides.append(float((np.minimum(hi[:2], size) - np.maximum(lo[:2], -size)).min()))
-    return min(sides)
-
-
 def footprint_sides():
     """The smaller side of every bracket footprint, clipped to its panel [m]."""
     sides = []
@@ -968,14 +957,14 @@ def cb_convergence_text(args, R):
     L.append("|---|---|---|---|---|")
     for h, g in zip(levels, geo):
         L.append(f"| {h:g} | {g['nodes']} | {g['area']:.1e} | {1000 * g['centre']:.1e} | +{100 * g['second']:.1f} % |")
-    thin = thinnest_footprint()
+    sides = footprint_sides()
+    thin = min(sides)
     L.append(f"\nEvery mesh models the same brackets: area and centre exact (rounding). The second moments (how the "
              f"fit spreads a moment over the patch) are those of the footprint only once the mesh resolves it: the "
              f"thinnest footprint, {1000 * thin:.0f} mm across (S12, between the panel corner and S14), is "
              f"{', '.join(f'{thin / min(h, 0.5 * thin * min(1.0, h / CB_GRADED_FROM)):.0f}' for h in levels)} "
              f"elements across at these meshes (docs/fe-prep.md; with a uniform mesh "
              f"{', '.join(f'{thin / h:.1f}' for h in levels)}).\n")
-    sides = footprint_sides()
     wide = max(set(sides), key=sides.count)  # the usual footprint (most of them)
     cap = lambda side, h: min(h, 0.5 * side * min(1.0, h / CB_GRADED_FROM))  # noqa: E731  fe-prep's, in a footprint
     same = [k for k in range(len(levels) - 1) if cap(wide, levels[k]) == cap(wide, levels[k + 1])]
