@@ -462,45 +462,140 @@ std::string System::nonFiniteCause(double t, const VectorXd& y) {
 }
 
 double System::project(double t, VectorXd& y) {
-  const int nq = model_.nq, nv = model_.nv;
+  const double viol = correctPositions(t, y, false, false, 10).violation;
+  correctVelocities(t, y, false);
+  return viol;
+}
+
+System::Assembly System::assemble(double t, VectorXd& y) {
+  const Assembly frames = correctPositions(t, y, true, true, kAssemblyPasses);
+  Assembly all = correctPositions(t, y, false, true, kAssemblyPasses);
+  correctVelocities(t, y, true);
+  // Velocities the frames made tangent (to the projection's own tolerance)
+  // stay: projecting them again would move the modal rates by rounding.
+  const VectorXd v = y.segment(model_.nq, model_.nv);
+  if (violations(t, y).velocity > 1e-13 * (1.0 + v.lpNorm<Eigen::Infinity>())) correctVelocities(t, y, false);
+  all.passes += frames.passes;
+  return all;
+}
+
+void System::applyIncrement(const VectorXd& dq, VectorXd& y) const {
+  for (const Body& b : model_.bodies) {
+    if (b.fixed) continue;
+    y.segment<3>(b.pos_index) += dq.segment<3>(b.dof_index);
+    // Rotation increments are in body axes: A_new = A exp(dtheta~).
+    const Vector3d dth = dq.segment<3>(b.dof_index + 3);
+    const double ang = dth.norm();
+    Eigen::Vector4d dp(1, 0, 0, 0);
+    if (ang > 0) dp = fc::eulerParametersFromAxisAngle(dth / ang, ang);
+    y.segment<4>(b.pos_index + 3) = fc::quatProduct(y.segment<4>(b.pos_index + 3), dp).normalized();
+    if (b.modes > 0) y.segment(b.pos_index + 7, b.modes) += dq.segment(b.dof_index + 6, b.modes);
+  }
+}
+
+void System::holdModes() {
+  std::size_t nb = 0;
+  for (const Body& b : model_.bodies) {
+    if (b.fixed) continue;
+    Eigen::MatrixXd& Mb = mass_.block[nb++];
+    if (b.modes == 0) continue;
+    for (int c = b.dof_index + 6; c < b.dof_index + 6 + b.modes; ++c)
+      for (SparseMatrixd::InnerIterator it(Phi_v_, c); it; ++it) it.valueRef() = 0.0;
+    Mb.rightCols(b.modes).topRows(6).setZero();                // arrow block: its 6 rows only
+    if (Mb.rows() > 6) Mb.bottomLeftCorner(b.modes, 6).setZero();  // dense block
+  }
+}
+
+System::Assembly System::correctPositions(double t, VectorXd& y, bool frames_only, bool damped, int max_passes) {
   double scale = 1.0;
   for (const Body& b : model_.bodies) scale = std::max(scale, b.position.norm());
   const double tol = 1e-12 * scale;
-  VectorXd accumulated = VectorXd::Zero(nv);
-  double viol = 0.0;
-  for (int it = 0; it < 10; ++it) {
+  VectorXd accumulated = VectorXd::Zero(model_.nv);
+  Assembly out;
+  for (; out.passes < max_passes; ++out.passes) {
     poses(y, P_);
     assembleConstraints(t, P_);
-    viol = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
+    const double viol = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
     if (viol <= tol) break;
     assembleMass(P_);
+    if (frames_only) holdModes();
     factorize();
+    // The drift's projection returns to the nearest configuration of the
+    // manifold in M's metric (the correction accumulated over the passes);
+    // the assembly takes each pass's shortest step instead (Gauss-Newton,
+    // quadratic): sliding back along a curved manifold toward a start far
+    // from it converges only linearly (docs/mbs-run.md, "Consistent start").
     const VectorXd dq = solver_.positionCorrection(phi_, accumulated, 1e-3 * tol, 20);
-    accumulated += dq;
-    for (const Body& b : model_.bodies) {
-      if (b.fixed) continue;
-      y.segment<3>(b.pos_index) += dq.segment<3>(b.dof_index);
-      // Rotation increments are in body axes: A_new = A exp(dtheta~).
-      const Vector3d dth = dq.segment<3>(b.dof_index + 3);
-      const double ang = dth.norm();
-      Eigen::Vector4d dp(1, 0, 0, 0);
-      if (ang > 0) dp = fc::eulerParametersFromAxisAngle(dth / ang, ang);
-      y.segment<4>(b.pos_index + 3) = fc::quatProduct(y.segment<4>(b.pos_index + 3), dp).normalized();
-      if (b.modes > 0) y.segment(b.pos_index + 7, b.modes) += dq.segment(b.dof_index + 6, b.modes);
+    if (!damped) {
+      accumulated += dq;
+      applyIncrement(dq, y);
+      continue;
+    }
+    // Backtracking on |Phi|_2 (Armijo's rule with c = 1e-4): the Newton step
+    // of a gap of the body's size turns the body by a large linearised angle
+    // and can land farther than it started.
+    const double merit = phi_.norm();
+    bool shortened = false;
+    double s = 1.0;
+    for (int k = 0; k < 30 && !shortened; ++k, s *= 0.5) {
+      VectorXd trial = y;
+      applyIncrement(s * dq, trial);
+      poses(trial, P_);
+      assembleConstraints(t, P_);
+      if (phi_.norm() < (1.0 - 1e-4 * s) * merit) {
+        y = trial;
+        shortened = true;
+      }
+    }
+    if (!shortened) {
+      out.stalled = true;
+      break;
     }
   }
   for (const Body& b : model_.bodies)
     if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
   poses(y, P_);
   assembleConstraints(t, P_);
-  viol = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
-  if (phi_.size()) {
-    assembleMass(P_);
-    factorize();
-    const VectorXd v0 = y.segment(nq, nv);
-    y.segment(nq, nv) = solver_.projectVelocities(v0, phit_, 1e-13 * (1.0 + v0.lpNorm<Eigen::Infinity>()), 20);
+  out.violation = phi_.size() ? phi_.cwiseAbs().maxCoeff() : 0.0;
+  return out;
+}
+
+void System::correctVelocities(double t, VectorXd& y, bool frames_only) {
+  const int nq = model_.nq, nv = model_.nv;
+  poses(y, P_);
+  assembleConstraints(t, P_);
+  if (phi_.size() == 0) return;
+  assembleMass(P_);
+  const VectorXd v0 = y.segment(nq, nv);
+  VectorXd phit = phit_;
+  if (frames_only) {
+    // The held modal rates' share of the velocity constraints moves into
+    // Phi_t before their columns leave Phi_v.
+    VectorXd modal_rates = VectorXd::Zero(nv);
+    for (const Body& b : model_.bodies)
+      if (!b.fixed && b.modes > 0) modal_rates.segment(b.dof_index + 6, b.modes) = v0.segment(b.dof_index + 6, b.modes);
+    phit += Phi_v_ * modal_rates;
+    holdModes();
   }
-  return viol;
+  factorize();
+  VectorXd v = solver_.projectVelocities(v0, phit, 1e-13 * (1.0 + v0.lpNorm<Eigen::Infinity>()), 20);
+  if (frames_only)
+    for (const Body& b : model_.bodies)
+      if (!b.fixed && b.modes > 0) v.segment(b.dof_index + 6, b.modes) = v0.segment(b.dof_index + 6, b.modes);
+  y.segment(nq, nv) = v;
+}
+
+VectorXd System::jointPointGap(int j, double t, const VectorXd& y) {
+  const Joint& jt = model_.joints[j];
+  const bool points = jt.type == JointType::Spherical || jt.type == JointType::Universal ||
+                      (jt.type == JointType::Revolute && !jt.stop_only);
+  if (!points) return VectorXd();
+  poses(y, P_);
+  ConstraintRows rows;
+  JointRuntime rt = joints_[j];
+  rt.enabled = true;
+  jointConstraints(jt, rt, P_[jt.body_i], P_[jt.body_j], t, rows);
+  return rows.phi.head(3);
 }
 
 Energies System::energies(double t, const VectorXd& y) const {

@@ -68,7 +68,33 @@ class System {
   void derivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot);
   // Mass-orthogonal projection of positions then velocities; normalises the
   // Euler parameters. Returns the largest position violation after projecting.
+  // For the drift of a step or the jump of an event (small): ten Newton
+  // passes with full steps.
   double project(double t, Eigen::VectorXd& y);
+
+  // The consistent start's projection, for a scene that may be placed far
+  // from assembled (docs/mbs-run.md, "Consistent start"): first the bodies'
+  // frames alone (modal coordinates and rates held at their given values),
+  // then every coordinate for what the frames cannot close (joints that
+  // need a deformation); each pass's step is halved until it shortens
+  // |Phi|_2, so that a gap of the body's size converges instead of
+  // overshooting. A gap the frames close leaves the modes as given.
+  struct Assembly {
+    double violation = 0.0;  // largest |Phi| after it
+    // Stopped where no step along the correction shortens |Phi|: a
+    // least-squares point of the joints (they pull against each other), not
+    // the pass limit.
+    bool stalled = false;
+    int passes = 0;
+  };
+  Assembly assemble(double t, Eigen::VectorXd& y);
+  // Passes of each of assemble()'s two stages at most.
+  static constexpr int kAssemblyPasses = 50;
+  // How far joint j is from holding at (t, y): the global vector from its
+  // point on body i to its point on body j for the joints that make them
+  // coincide (spherical, universal, revolute, except a revolute's stop-only
+  // row); empty otherwise.
+  Eigen::VectorXd jointPointGap(int j, double t, const Eigen::VectorXd& y);
   // Largest |Phi| over the active constraints.
   double constraintViolation(double t, const Eigen::VectorXd& y);
   // Largest |Phi| and largest |Phi_v v + Phi_t| (velocity level).
@@ -134,6 +160,19 @@ class System {
   void appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) const;
   void factorize();
   double penalty() const;
+  // Newton passes on the positions (project(), assemble()): frames_only
+  // holds the modal coordinates; damped (the assembly's) takes each pass's
+  // shortest step, halved until it shortens |Phi|_2, where the drift's
+  // passes return toward the start. Leaves the Euler parameters normalised.
+  Assembly correctPositions(double t, Eigen::VectorXd& y, bool frames_only, bool damped, int max_passes);
+  // Mass-orthogonal velocity projection; frames_only holds the modal rates.
+  void correctVelocities(double t, Eigen::VectorXd& y, bool frames_only);
+  // Takes the modal coordinates out of the assembled Phi_v (their columns
+  // zeroed) and M (the frame-mode coupling zeroed), so that a correction
+  // moves the frames only and is mass-orthogonal in the frames' own metric.
+  void holdModes();
+  // y advanced by the velocity-space increment dq (rotations in body axes).
+  void applyIncrement(const Eigen::VectorXd& dq, Eigen::VectorXd& y) const;
   // The unit-load cases of interface `name` of a stiffened flexible body
   // (flexible/geometric_stiffening.h), or null when that point does not stiffen.
   const std::array<Eigen::MatrixXd, 6>* stiffenedInterface(int body, const std::string& name) const;
