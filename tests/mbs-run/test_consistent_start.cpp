@@ -157,22 +157,32 @@ TEST(ConsistentStart, FlexibleBodyPlacedAwayMovesAsPlacedAssembled) {
 // A rigid body placed 0.5 m off along the line from its joint point through
 // its centre of mass: the mass-orthogonal correction is a pure translation
 // (an impulse through the centre of mass), so it moves exactly as the body
-// placed at the joint (same tolerances as above).
+// placed at the joint (same tolerances as above), on both formulations (the
+// joint-coordinate path starts from the same consistent start).
 TEST(ConsistentStart, RigidBodyPlacedAwayMovesAsPlacedAssembled) {
   const std::string rigid =
       "rigid: {mass: 1, center_of_mass: [0.5, 0, 0], inertia: [[0.01,0,0],[0,0.08,0],[0,0,0.08]]}";
-  const Model away = sceneFromText(hung(rigid, "[0, 0, 0]", placedAt({0.5, 0, 0})));
-  const Model assembled = sceneFromText(hung(rigid, "[0, 0, 0]", placedAt({0, 0, 0})));
-  const Results a = simulate(away, {true}), o = simulate(assembled, {true});
-  ASSERT_EQ(a.status, "completed");
-  ASSERT_EQ(o.status, "completed");
-  ASSERT_EQ(a.time.size(), o.time.size());
-  double d = 0;
-  for (std::size_t k = 0; k < a.time.size(); ++k)
-    d = std::max({d, (a.position[1][k] - o.position[1][k]).norm(),
-                  (a.orientation[1][k] - o.orientation[1][k]).lpNorm<Eigen::Infinity>()});
-  EXPECT_LT(a.position[1][0].norm(), 1e-12);
-  EXPECT_LT(d, 1e-7);
+  for (const char* formulation : {"constrained", "tree"}) {
+    SCOPED_TRACE(formulation);
+    auto scene = [&](const Eigen::Vector3d& r) {
+      std::string text = hung(rigid, "[0, 0, 0]", placedAt(r));
+      const std::string sim = "rtol: 1.0e-9}";
+      text.replace(text.find(sim), sim.size(), "rtol: 1.0e-9, formulation: " + std::string(formulation) + "}");
+      return sceneFromText(text);
+    };
+    const Results a = simulate(scene({0.5, 0, 0}), {true}), o = simulate(scene({0, 0, 0}), {true});
+    EXPECT_EQ(a.formulation.rfind(formulation, 0), 0u) << a.formulation;
+    ASSERT_EQ(a.status, "completed");
+    ASSERT_EQ(o.status, "completed");
+    ASSERT_EQ(a.time.size(), o.time.size());
+    double d = 0;
+    for (std::size_t k = 0; k < a.time.size(); ++k)
+      d = std::max({d, (a.position[1][k] - o.position[1][k]).norm(),
+                    (a.orientation[1][k] - o.orientation[1][k]).lpNorm<Eigen::Infinity>()});
+    EXPECT_LT(a.position[1][0].norm(), 1e-12);
+    EXPECT_GT((a.orientation[1].back() - a.orientation[1][0]).norm(), 0.1);  // it swings
+    EXPECT_LT(d, 1e-7);
+  }
 }
 
 // The fuzz case of three revolutes with contradicting axes (also placed 1 m
