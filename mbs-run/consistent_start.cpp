@@ -33,22 +33,21 @@ double bodySize(const Body& b) {
   return size;
 }
 
-// The joint of `body` (any joint when body < 0) farthest from holding as
-// placed, and its gap: the distance of its points, or its largest |Phi|
-// (m or rad) for joints without coinciding points.
+// The active joint of `body` (any when body < 0) whose points are farthest
+// apart as placed, among the joints that make two points coincide; joint -1
+// when there is none.
 struct PlacedGap {
   int joint = -1;
-  double gap = 0.0;
-  bool points = false;
+  double gap = 0.0;  // [m]
 };
 PlacedGap largestPlacedGap(System& sys, const Eigen::VectorXd& placed, int body) {
   PlacedGap g;
   const Model& m = sys.model();
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const Joint& jt = m.joints[j];
-    if (body >= 0 && jt.body_i != body && jt.body_j != body) continue;
+    if (!sys.jointRuntime(int(j)).enabled || (body >= 0 && jt.body_i != body && jt.body_j != body)) continue;
     const Eigen::VectorXd d = sys.jointPointGap(int(j), 0.0, placed);
-    if (d.size() == 3 && d.norm() > g.gap) g = {int(j), d.norm(), true};
+    if (d.size() == 3 && d.norm() > g.gap) g = {int(j), d.norm()};
   }
   return g;
 }
