@@ -141,6 +141,12 @@ void requireSizes(const FlexBody& b, const InertiaInvariants* inv, const std::st
     if (it.shapes.rows() != nm || it.shapes.cols() != 6)
       bad("interface " + it.name + ": shapes must be (" + str(nm) + ", 6)");
   }
+  if (b.kept_eigenvalues.size() != static_cast<long>(b.kept_modes.size()))
+    bad("kept_eigenvalues must have one entry per kept mode (" + str(static_cast<long>(b.kept_modes.size())) + ")");
+  if (b.fixed_interface_coordinates.size() &&
+      (b.fixed_interface_coordinates.rows() != nm || b.fixed_interface_coordinates.cols() != static_cast<long>(b.kept_modes.size())))
+    bad("fixed_interface_coordinates must be (n_modes, n_kept) = (" + str(nm) + ", " +
+        str(static_cast<long>(b.kept_modes.size())) + ")");
   for (const auto& [type, conn] : b.elements)
     for (long i = 0; i < conn.size(); ++i)
       if (conn.data()[i] < 0 || conn.data()[i] >= n) bad("elements " + type + ": node index out of range");
@@ -258,6 +264,7 @@ void setRigidPropertiesFromLumpedMasses(FlexBody& body) {
   rigid.frequencies_hz.resize(0);
   rigid.interfaces.clear();
   rigid.geometric_stiffness.clear();
+  rigid.fixed_interface_coordinates.resize(0, 0);
   const InertiaInvariants inv = computeInertiaInvariants(rigid, 0);
   body.mass = inv.mass;
   body.center_of_mass = inv.centerOfMass();
@@ -383,6 +390,15 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
     f.writeMatrix("/inertia/exact/tensor", body.exact_inertia_tensor);
   }
 
+  if (!body.kept_modes.empty()) {
+    f.writeIntVector("/reduction/kept_modes", body.kept_modes);
+    f.writeVector("/reduction/kept_eigenvalues", body.kept_eigenvalues);
+    if (body.fixed_interface_coordinates.size()) {
+      const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c = body.fixed_interface_coordinates;
+      writeArray(f, "/reduction/fixed_interface_coordinates", {um, static_cast<hsize_t>(c.cols())}, c.data());
+    }
+  }
+
   f.createGroup("/interfaces");
   for (const auto& it : body.interfaces) {
     const std::string g = "/interfaces/" + it.name;
@@ -490,6 +506,16 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
     const std::vector<double> ec = readLeading(f, "/inertia/exact/center_of_mass", {3}, {true});
     b.exact_center_of_mass = Eigen::Vector3d(ec[0], ec[1], ec[2]);
     b.exact_inertia_tensor = rowMajor(readLeading(f, "/inertia/exact/tensor", {3, 3}, {true, true}), 3, 3);
+  }
+
+  if (f.exists("/reduction/kept_modes")) {
+    b.kept_modes = f.readIntVector("/reduction/kept_modes");
+    const hsize_t nk = static_cast<hsize_t>(b.kept_modes.size());
+    const std::vector<double> ke = readLeading(f, "/reduction/kept_eigenvalues", {nk}, {true});
+    b.kept_eigenvalues = Eigen::Map<const Eigen::VectorXd>(ke.data(), static_cast<long>(nk));
+    if (f.exists("/reduction/fixed_interface_coordinates"))
+      b.fixed_interface_coordinates =
+          rowMajor(readLeading(f, "/reduction/fixed_interface_coordinates", {um, nk}, {false, true}), nm, static_cast<long>(nk));
   }
 
   if (f.exists("/interfaces"))

@@ -85,6 +85,16 @@ struct FlexBody {
   // Which basis the shapes are (root attribute `reduction`): "free: N shapes" or
   // "craig_bampton: ... = N shapes" (docs/fe-prep.md); empty when unknown.
   std::string reduction;
+  // /reduction/ (docs/body-file.md): the eigenmodes the basis keeps (1-based
+  // numbers by ascending frequency of the constrained, for craig_bampton the
+  // fixed-interface, eigenproblem; all the lowest unless fe-prep's
+  // modes: {keep: [...]} chose them) and their eigenvalues [rad^2/s^2]; for a
+  // craig_bampton basis also the (n_modes, n_kept) fixed-interface amplitudes
+  // of each unit shape (craig_bampton.h), from which mbs-run reports each
+  // fixed-interface mode's strain energy. Empty when the file predates them.
+  std::vector<long> kept_modes;
+  Eigen::VectorXd kept_eigenvalues;
+  Eigen::MatrixXd fixed_interface_coordinates;
   bool has_exact_inertia = false;
   double exact_mass = 0.0;
   Eigen::Vector3d exact_center_of_mass = Eigen::Vector3d::Zero();

@@ -281,10 +281,23 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (b.has("modes") && b.has("max_frequency_hz")) b.fail("give either modes: N or max_frequency_hz: F, not both");
   if (b.has("modes") && b["modes"].isMap()) {
     const InputNode m = b["modes"];
-    m.allowKeys({"static_error", "count", "static_correction"});
-    if (m.has("static_error") == m.has("count"))
-      m.fail("expected either count: N or static_error: E in modes: {...}");
-    if (m.has("count")) {
+    m.allowKeys({"static_error", "count", "keep", "static_correction"});
+    if (int(m.has("static_error")) + int(m.has("count")) + int(m.has("keep")) != 1)
+      m.fail("expected one of count: N, keep: [mode numbers] or static_error: E in modes: {...}");
+    if (m.has("keep")) {
+      const InputNode k = m["keep"];
+      if (!k.isSequence() || k.size() == 0) k.fail("expected a list of mode numbers, e.g. keep: [1, 2, 5, 7]");
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        const long j = k.at(i).asInt();
+        if (j < 1) k.at(i).fail("expected a mode number >= 1 (modes are numbered from 1 by ascending frequency)");
+        if (!spec.keep_modes.empty() && j <= spec.keep_modes.back())
+          k.at(i).fail("expected ascending mode numbers without repeats (got " + std::to_string(j) + " after " +
+                       std::to_string(spec.keep_modes.back()) + ")");
+        spec.keep_modes.push_back(j);
+      }
+      spec.modes_node = k;
+      spec.modes = static_cast<long>(spec.keep_modes.size());
+    } else if (m.has("count")) {
       spec.modes_node = m["count"];
       spec.modes = m["count"].asInt();
       if (spec.modes < 1) m["count"].fail("expected a positive number of modes");

@@ -70,6 +70,11 @@ struct BodySpec {
   InputNode modes_node;  // where `modes:` was given, for errors found once the mesh is known
   double static_error = 0.0;  // modes: {static_error: e}: the fewest modes that miss at most e (static_response.h)
   double max_frequency_hz = 0.0;
+  // modes: {keep: [1, 2, 5, 7]}: these eigenmodes (1-based, by ascending
+  // frequency) and no others, e.g. the ones a run excited (mbs-run reports
+  // each fixed-interface mode's peak strain energy); `modes` is then their
+  // count. Ascending, without repeats.
+  std::vector<long> keep_modes;
   // modes: {count: N, static_correction: true | [interfaces]}: the kept modes
   // augmented with the residual static responses (attachment modes) to unit
   // loads at the interfaces, re-diagonalised (residual_flexibility.h).

@@ -143,6 +143,15 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
   return d;
 }
 
+// " (modes 1, 2, 5)" for the reduction attribute when keep: chose them; empty
+// when the basis keeps the lowest modes.
+std::string keptText(const std::vector<long>& keep) {
+  if (keep.empty()) return "";
+  std::string t = " (modes";
+  for (std::size_t j = 0; j < keep.size(); ++j) t += (j ? ", " : " ") + std::to_string(keep[j]);
+  return t + ")";
+}
+
 }  // namespace
 
 Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
@@ -399,13 +408,15 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   // what does not exist.
   const long massless = masslessDofs(sys.M);
   const long flexible = map.reduced - massless - rigid.cols();
-  if (spec.modes > flexible)
-    spec.modes_node.fail("asked for " + std::to_string(spec.modes) + " modes but the meshed body has only " +
+  // keep: [...] solves up to the highest mode number asked.
+  const long solved = spec.keep_modes.empty() ? spec.modes : spec.keep_modes.back();
+  if (solved > flexible)
+    spec.modes_node.fail("asked for " + (spec.keep_modes.empty() ? std::to_string(spec.modes) + " modes" : "mode " + std::to_string(solved)) + " but the meshed body has only " +
                          std::to_string(flexible) + " flexible degrees of freedom that carry mass (" +
                          std::to_string(massless) + " more carry none: the shells' drilling rotations); ask for "
                          "fewer modes or refine the mesh");
   ModalRequest req;
-  req.modes = spec.static_error > 0 ? 8 : spec.modes;
+  req.modes = spec.static_error > 0 ? 8 : solved;
   req.max_frequency_hz = spec.max_frequency_hz;
   req.tolerance = options.tolerance;
   Progress peig("eigen-solve", 1.0, quiet);
@@ -442,6 +453,26 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
     req.modes = std::min<long>(2 * req.modes, available);
   }
+  // The eigenmodes the basis keeps: all that were solved, or those asked by
+  // number (keep: [...]); recorded in /reduction/ (docs/body-file.md).
+  std::vector<long> kept(static_cast<std::size_t>(modal.eigenvalues.size()));
+  for (std::size_t j = 0; j < kept.size(); ++j) kept[j] = static_cast<long>(j) + 1;
+  if (!spec.keep_modes.empty()) {
+    if (modal.eigenvalues.size() < solved)
+      spec.modes_node.fail("mode " + std::to_string(solved) + " asked but the eigen-solver found " +
+                           std::to_string(modal.eigenvalues.size()));
+    kept = spec.keep_modes;
+    ModalResult chosen = modal;
+    chosen.eigenvalues.resize(static_cast<long>(kept.size()));
+    chosen.vectors.resize(modal.vectors.rows(), static_cast<long>(kept.size()));
+    for (std::size_t j = 0; j < kept.size(); ++j) {
+      chosen.eigenvalues(static_cast<long>(j)) = modal.eigenvalues(kept[j] - 1);
+      chosen.vectors.col(static_cast<long>(j)) = modal.vectors.col(kept[j] - 1);
+    }
+    modal = std::move(chosen);
+  }
+  body.kept_modes = kept;
+  body.kept_eigenvalues = modal.eigenvalues;
   peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(rigid.cols()) +
               " rigid removed)");
   res.stages.push_back({"eigensolve", sw.seconds(), sw.cpu(), peakRssMb()});
@@ -517,6 +548,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     const CraigBamptonResult cbr = craigBampton(comm, cb);
     body.eigenvalues = cbr.eigenvalues;
     body.shapes = cbr.shapes;
+    body.fixed_interface_coordinates = cbr.fixed_interface_coordinates;
     res.constraint_modes = cb.lifts.cols();
     res.normal_modes = modal.eigenvalues.size();
     res.rigid_removed = cbr.rigid_eigenvalues.size();
@@ -524,7 +556,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     res.rigid_share_removed_min = cbr.rigid_share_removed_min;
     res.rigid_share_kept_max = cbr.rigid_share_kept_max;
     body.reduction = "craig_bampton: " + std::to_string(res.constraint_modes) + " constraint modes + " +
-                     std::to_string(res.normal_modes) + " fixed-interface modes - " +
+                     std::to_string(res.normal_modes) + " fixed-interface modes" + keptText(spec.keep_modes) + " - " +
                      std::to_string(res.rigid_removed) + " rigid" +
                      (cbr.massless_condensed ? " - " + std::to_string(cbr.massless_condensed) + " massless" : "") +
                      " = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
@@ -568,7 +600,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
     res.attachment_modes = m - ab.in_span - ab.dependent - ab.massless;
     body.reduction = std::string("free + static correction") + (inertia_relief ? " with inertia relief" : "") + ": " +
-                     std::to_string(nm) + " modes + " + std::to_string(m) +
+                     std::to_string(nm) + " modes" + keptText(spec.keep_modes) + " + " + std::to_string(m) +
                      " unit loads - " + std::to_string(ab.in_span + ab.dependent) + " in the span" +
                      (ab.massless ? " - " + std::to_string(ab.massless) + " massless" : "") + " = " +
                      std::to_string(ab.eigenvalues.size()) + " shapes";
@@ -576,7 +608,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.eigenvalues = modal.eigenvalues;
     body.shapes.resize(6 * mesh.nodeCount(), modal.eigenvalues.size());
     for (long j = 0; j < modal.eigenvalues.size(); ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
-    body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes";
+    body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes" + keptText(spec.keep_modes);
   }
   body.frequencies_hz = body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
   if (spec.geometric_stiffness) {

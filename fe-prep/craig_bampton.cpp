@@ -82,13 +82,15 @@ CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
   }
   out.eigenvalues.resize(static_cast<long>(kept.size()));
   out.shapes.resize(N, static_cast<long>(kept.size()));
+  out.fixed_interface_coordinates.resize(static_cast<long>(kept.size()), nk);
   for (std::size_t i = 0; i < kept.size(); ++i) {
     out.eigenvalues(static_cast<long>(i)) = es.eigenvalues(kept[i]);
     Eigen::VectorXd x = B * X.col(kept[i]);
     Eigen::Index imax;
     x.cwiseAbs().maxCoeff(&imax);
-    if (x(imax) < 0) x = -x;  // the modal solver's sign convention
-    out.shapes.col(static_cast<long>(i)) = x;
+    const double sign = x(imax) < 0 ? -1.0 : 1.0;  // the modal solver's sign convention
+    out.shapes.col(static_cast<long>(i)) = sign * x;
+    out.fixed_interface_coordinates.row(static_cast<long>(i)) = sign * X.col(kept[i]).tail(nk).transpose();
   }
   out.rigid_eigenvalues = Eigen::Map<const Eigen::VectorXd>(removed.data(), static_cast<long>(removed.size()));
   return out;

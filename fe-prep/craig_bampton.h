@@ -38,6 +38,12 @@ struct CraigBamptonResult {
   Eigen::VectorXd eigenvalues;     // ascending
   Eigen::MatrixXd shapes;          // (6 n, n_shapes), M-orthonormal
   Eigen::MatrixXd constraint_modes;// (6 n, n_boundary), the static constraint modes
+  // (n_shapes, n_normal): row i holds the fixed-interface modal amplitudes of
+  // unit shape i (the last n_normal rows of the Ritz eigenvector), so a state q
+  // has eta = F^T q and each fixed-interface mode's strain energy is
+  // lambda_j eta_j^2 / 2 exactly (the reduced K is block diagonal: the
+  // constraint modes' Guyan block and diag(lambda)).
+  Eigen::MatrixXd fixed_interface_coordinates;
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
   long massless_condensed = 0;     // basis directions without mass, condensed (ritz_basis.h)

@@ -91,6 +91,20 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
                 static_cast<long>(biggest) + 1, e(biggest),
                 share > 0.05 ? ": the highest kept modes are excited, try more modes" : "");
   }
+  for (std::size_t k = 0; k < m.bodies.size() && k < r.peak_fixed_interface_energy.size(); ++k) {
+    const Eigen::VectorXd& e = r.peak_fixed_interface_energy[k];
+    if (e.size() == 0) continue;
+    const fc::mbs::ModeRanking rank = fc::mbs::rankByPeakEnergy(e, r.fixed_interface_modes[k]);
+    std::string list;
+    for (std::size_t i = 0; i < rank.modes.size() && i < 12; ++i) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%s%ld (%.3g %%)", i ? ", " : "", rank.modes[i], 100 * rank.share[i]);
+      list += buf;
+    }
+    std::printf("  fixed-interface modes %s by peak strain energy: %s%s (a body YAML's modes: {keep: [...]} "
+                "can keep the most excited)\n",
+                m.bodies[k].name.c_str(), list.c_str(), rank.modes.size() > 12 ? ", ..." : "");
+  }
   if (r.peak_failure_index.found)
     std::printf("  largest Tsai-Wu failure index %.4g (body %s, element %ld, ply %ld, 0-based; t = %.6g s)%s\n",
                 r.peak_failure_index.value, r.peak_failure_index.body.c_str(), r.peak_failure_index.element,

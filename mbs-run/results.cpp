@@ -54,6 +54,16 @@ std::vector<Channel> resultChannels(const Model& m) {
                      const Eigen::VectorXd e = modalEnergies(modal, s.bodies[k].modal, s.bodies[k].modal_rate);
                      for (int i = 0; i < nm; ++i) out[i] = e[i];
                    }});
+      // Craig-Bampton bodies: each kept fixed-interface mode's strain energy
+      // per row, to rank them over any time window (flexible_body.h).
+      if (const long nf = m.bodies[k].flex->fixed_interface_eigenvalues.size();
+          m.bodies[k].flex->fixed_interface_coordinates.size() && nf > 0) {
+        const auto flex = m.bodies[k].flex;
+        c.push_back({b + "fixed_interface_energy", static_cast<int>(nf), false, [k, nf, flex](const Sample& s, double* out) {
+                       const Eigen::VectorXd e = fixedInterfaceStrainEnergies(*flex, s.bodies[k].modal);
+                       for (long i = 0; i < nf; ++i) out[i] = e[i];
+                     }});
+      }
     }
     // Stress recovery of the bodies named in outputs.stresses: one dataset per
     // output, the time leading (e.g. ply_stress (n_out, n_el, n_plies, 3)).
@@ -264,6 +274,10 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     const std::string g = "/bodies/" + model.bodies[k].name;
     f.writeVector(g + "/modal_energy_peak", r.peak_modal_energy[k]);
     f.setAttribute(g, "highest_modes_energy_share", highestModesEnergyShare(r.peak_modal_energy[k]));
+    if (k < r.peak_fixed_interface_energy.size() && r.peak_fixed_interface_energy[k].size()) {
+      f.writeVector(g + "/fixed_interface_energy_peak", r.peak_fixed_interface_energy[k]);
+      f.writeIntVector(g + "/fixed_interface_modes", r.fixed_interface_modes[k]);
+    }
   }
   // Contact monitor summary: the smallest distance of each pair and when.
   for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.smallest_distance.size(); ++k) {

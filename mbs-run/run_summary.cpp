@@ -1,5 +1,6 @@
 #include "mbs-run/run_summary.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 
@@ -31,13 +32,24 @@ void RunSummary::observe(const Model& m, const Sample& s) {
             m.bodies[k].name + " mode " + std::to_string(i + 1));
   if (peak_modal_energy.size() != s.bodies.size()) {
     peak_modal_energy.assign(s.bodies.size(), Eigen::VectorXd());
-    for (std::size_t k = 0; k < s.bodies.size(); ++k)
+    peak_fixed_interface_energy.assign(s.bodies.size(), Eigen::VectorXd());
+    fixed_interface_modes.assign(s.bodies.size(), {});
+    for (std::size_t k = 0; k < s.bodies.size(); ++k) {
       peak_modal_energy[k] = Eigen::VectorXd::Zero(m.bodies[k].flex ? m.bodies[k].modes : 0);
+      if (m.bodies[k].flex && m.bodies[k].flex->fixed_interface_coordinates.size()) {
+        peak_fixed_interface_energy[k] = Eigen::VectorXd::Zero(m.bodies[k].flex->fixed_interface_eigenvalues.size());
+        fixed_interface_modes[k] = m.bodies[k].flex->fixed_interface_modes;
+      }
+    }
   }
-  for (std::size_t k = 0; k < s.bodies.size(); ++k)
-    if (m.bodies[k].flex && m.bodies[k].modes > 0)
-      peak_modal_energy[k] = peak_modal_energy[k].cwiseMax(
-          modalEnergies(m.bodies[k].flex->modal, s.bodies[k].modal, s.bodies[k].modal_rate));
+  for (std::size_t k = 0; k < s.bodies.size(); ++k) {
+    if (!m.bodies[k].flex || m.bodies[k].modes == 0) continue;
+    const FlexibleBodyData& fb = *m.bodies[k].flex;
+    peak_modal_energy[k] = peak_modal_energy[k].cwiseMax(modalEnergies(fb.modal, s.bodies[k].modal, s.bodies[k].modal_rate));
+    if (fb.fixed_interface_coordinates.size())
+      peak_fixed_interface_energy[k] =
+          peak_fixed_interface_energy[k].cwiseMax(fixedInterfaceStrainEnergies(fb, s.bodies[k].modal));
+  }
   for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
     const auto& r = m.bodies[k].stress;
     if (!r || r->failure_output < 0 || s.bodies[k].stress.size() != r->outputs.size()) continue;
@@ -68,6 +80,19 @@ double highestModesEnergyShare(const Eigen::VectorXd& peaks, int* count) {
   if (count) *count = static_cast<int>(top);
   const double total = peaks.sum();
   return total > 0 ? peaks.tail(top).sum() / total : 0.0;
+}
+
+ModeRanking rankByPeakEnergy(const Eigen::VectorXd& peaks, const std::vector<long>& numbers) {
+  std::vector<long> order(static_cast<std::size_t>(peaks.size()));
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = static_cast<long>(j);
+  std::stable_sort(order.begin(), order.end(), [&](long a, long b) { return peaks(a) > peaks(b); });
+  ModeRanking r;
+  const double total = peaks.sum();
+  for (long j : order) {
+    r.modes.push_back(static_cast<std::size_t>(j) < numbers.size() ? numbers[static_cast<std::size_t>(j)] : j + 1);
+    r.share.push_back(total > 0 ? peaks(j) / total : 0.0);
+  }
+  return r;
 }
 
 std::string timeLabel(double t) {

@@ -43,6 +43,11 @@ struct RunSummary {
   // Peak over the output rows of each mode's energy (modalEnergies), per body
   // (empty for rigid bodies): which modes the run excited (issue 16).
   std::vector<Eigen::VectorXd> peak_modal_energy;
+  // Craig-Bampton bodies: peak over the output rows of each fixed-interface
+  // mode's strain energy lambda_j eta_j^2 / 2, eta = F^T q (flexible_body.h);
+  // empty for other bodies. The ranking fe-prep's modes: {keep: [...]} needs.
+  std::vector<Eigen::VectorXd> peak_fixed_interface_energy;
+  std::vector<std::vector<long>> fixed_interface_modes;  // their 1-based numbers, per body
   // Largest failure index over the bodies with stress recovery, their
   // elements (0-based, rows of /mesh/centroids), plies (0-based, bottom up)
   // and output rows; found = false when no body has one.
@@ -69,6 +74,16 @@ struct RunSummary {
   // Folds one output row into the statistics (joint and body names from the model).
   void observe(const Model& m, const Sample& s);
 };
+
+// The mode numbers of a Craig-Bampton body's fixed-interface modes ordered by
+// their peak strain energy, most excited first (ties keep the lower number),
+// and the share of the summed peaks each carries: what a body YAML's
+// modes: {keep: [...]} can take from a run with many modes (docs/mbs-run.md).
+struct ModeRanking {
+  std::vector<long> modes;
+  std::vector<double> share;
+};
+ModeRanking rankByPeakEnergy(const Eigen::VectorXd& peaks, const std::vector<long>& numbers);
 
 // The share of the summed per-mode peak energies carried by the highest
 // quarter of the kept modes (at least one mode): near 0 when the cut left

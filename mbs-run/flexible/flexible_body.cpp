@@ -30,6 +30,12 @@ Marker FlexibleBodyData::marker(const std::string& interface, const Eigen::Matri
   return markerFromInterface(*it, modes, axes);
 }
 
+Eigen::VectorXd fixedInterfaceStrainEnergies(const FlexibleBodyData& b, const Eigen::VectorXd& q) {
+  if (b.fixed_interface_coordinates.size() == 0) return {};
+  const Eigen::VectorXd eta = b.fixed_interface_coordinates.transpose() * q;
+  return 0.5 * b.fixed_interface_eigenvalues.cwiseProduct(eta.cwiseAbs2());
+}
+
 FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double damping_ratio) {
   const FlexBodyFile f = readFlexBody(file, modes, FlexBodyParts::Dynamics);
   FlexibleBodyData b;
@@ -40,6 +46,11 @@ FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double dam
   b.modal = modalProperties(f.body.eigenvalues, damping_ratio);
   b.frequencies_hz = f.body.frequencies_hz;
   b.interfaces = f.body.interfaces;
+  if (f.body.fixed_interface_coordinates.size() && b.modes > 0) {
+    b.fixed_interface_coordinates = f.body.fixed_interface_coordinates;
+    b.fixed_interface_eigenvalues = f.body.kept_eigenvalues;
+    b.fixed_interface_modes = f.body.kept_modes;
+  }
   // The node form reads the nodal masses and shapes, so it is considered only
   // when it can be the cheaper one: every node of a mesh moves along at least
   // one axis, so its rows r are at least the node count.

@@ -32,6 +32,14 @@ struct FlexibleBodyData {
   ModalProperties modal;
   Eigen::VectorXd frequencies_hz;
   std::vector<FlexInterface> interfaces;  // shapes restricted to the first `modes` modes
+  // Craig-Bampton bodies (the file's /reduction/fixed_interface_coordinates;
+  // empty otherwise): eta = F^T q gives the fixed-interface modal amplitudes,
+  // whose strain energies lambda_j eta_j^2 / 2 the run summary reports (which
+  // fixed-interface modes a run excited: what fe-prep's modes: {keep: [...]}
+  // can then choose). Numbers 1-based as in the file.
+  Eigen::MatrixXd fixed_interface_coordinates;  // (modes, n_kept)
+  Eigen::VectorXd fixed_interface_eigenvalues;
+  std::vector<long> fixed_interface_modes;
   // geometric_stiffening: true (geometric_stiffening.h); null when off: nothing computed.
   std::shared_ptr<const GeometricStiffening> stiffening;
 
@@ -41,6 +49,13 @@ struct FlexibleBodyData {
   Marker marker(const std::string& interface,
                 const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity()) const;
 };
+
+// Each fixed-interface mode's strain energy lambda_j eta_j^2 / 2, eta = F^T q,
+// at modal state q (empty for bodies without fixed_interface_coordinates).
+// Exact: a Craig-Bampton reduced stiffness is block diagonal, the constraint
+// modes' block and diag(lambda), so these and the boundary's part add up to
+// q^T diag(omega^2) q / 2.
+Eigen::VectorXd fixedInterfaceStrainEnergies(const FlexibleBodyData& b, const Eigen::VectorXd& q);
 
 // From the scene's `flexible:` block; every problem is an fc::InputError at the
 // offending key (unknown key, missing/unreadable/foreign file at `file`, more

@@ -89,7 +89,7 @@ TEST(ResidualFlexibility, KeyErrors) {
     }
   };
   fails(steelCantileverYaml("{count: 2, static_correction: [tpi]}"), "did you mean 'tip'");
-  fails(steelCantileverYaml("{static_correction: true}"), "either count: N or static_error: E");
+  fails(steelCantileverYaml("{static_correction: true}"), "one of count: N, keep: [mode numbers] or static_error: E");
 }
 
 // The steel rod of steelCantileverYaml floating free (reference: free), n elements.
