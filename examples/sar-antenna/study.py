@@ -103,6 +103,13 @@ CB_MESHES = [0.1, 0.05, 0.025, 0.0125]
 # refined no footprint and moved R3 by 1.7e-4 rad, the next one by 5.6e-4 (docs/fe-prep.md).
 CB_GRADED_FROM = CB_MESHES[0]
 CB_PANEL_MODES = [2, 4, 8, 16, 32]
+# The same refinement by frequency: every fixed-interface mode of a panel below a cutoff (fe-prep
+# max_frequency_hz), the cutoff doubled per step. The count sequence refines the two panels unevenly (panel 2's
+# lowest fixed-interface modes are 12-13 Hz, panel 3's 3-7 Hz: "2 modes" is a different part of each spectrum)
+# and its first doubling adds panel 3's 11.5 and 15.5 Hz modes, which R3 barely feels; a cutoff refines both
+# spectra alike, as a mode-truncation criterion does (modes up to a multiple of the excitation's frequencies).
+# Run names carry the cutoff as modes "fF" (F in Hz).
+CB_PANEL_CUTOFFS = [12.5, 25, 50, 100]
 # Which panel's modes the mode sequence waits for: panel 3's fixed-interface count alone (key "p3"), panel 2
 # keeping CB_SPLIT_OTHER, against both at CB_SPLIT_OTHER (group "panel 3 modes"; out of the Pareto fronts).
 CB_SPLIT_MODES = [2, 3, 4, 5, 6, 7, 8]
@@ -190,6 +197,7 @@ def sweep_cb():
             ("convergence", dict(REF, tri=MESHES[-2]))]
     runs += [("mesh", dict(BASE, tri=h)) for h in MESHES]
     runs += [("panel modes", dict(BASE, modes=m)) for m in PANEL_MODES]
+    runs += [("panel modes by frequency", dict(BASE, modes=cutoff_modes(f))) for f in CB_PANEL_CUTOFFS]
     runs += [("truss modes", dict(BASE, truss=k)) for k in TRUSS_MODES]
     runs += [("tolerance", dict(BASE, rtol=r)) for r in RTOLS]
     runs += [("tolerance", dict(BASE, preset=p, rtol=None, integ=None)) for p in ("fast", "accurate")]
@@ -203,6 +211,11 @@ def sweep_cb():
     runs += [("mesh check", dict(BASE, tri=h, monitor=False)) for h in ((REF["tri"], CB_CHECK_MESH) if CB_CHECK_MESH else ())]
     runs += [("panel 3 modes", dict(BASE, modes=CB_SPLIT_OTHER, p3=m)) for m in CB_SPLIT_MODES]
     return runs
+
+
+def cutoff_modes(f_hz):
+    """The `modes` value of a run that keeps every fixed-interface mode below f_hz (see CB_PANEL_CUTOFFS)."""
+    return f"f{f_hz:g}"
 
 
 def newer(target, *sources):
@@ -252,7 +265,11 @@ def make_panels(args, tri, cb_modes=None):
             stem = f"{panel}_h{tri:g}_cb{cb_modes}"
             spec["body"]["name"] = stem
             spec["body"]["shell"]["mesh"] = {"size": tri, "max_triangles": 400000, "graded_from": CB_GRADED_FROM}
-            spec["body"]["modes"] = cb_modes
+            if isinstance(cb_modes, str):  # a cutoff (cutoff_modes): every fixed-interface mode below it
+                del spec["body"]["modes"]
+                spec["body"]["max_frequency_hz"] = float(cb_modes[1:])
+            else:
+                spec["body"]["modes"] = cb_modes
             boundary = cb_footprints(spec["body"]["interfaces"])
             for name, box in boundary.items():
                 p = spec["body"]["interfaces"][name]
@@ -440,7 +457,8 @@ def main():
 
     runs = sweep(args)
     if is_cb(args):  # a Craig-Bampton basis per (mesh, fixed-interface modes)
-        keys = sorted({(c["tri"], c["modes"]) for _, c in runs} | {(c["tri"], c["p3"]) for _, c in runs if "p3" in c})
+        keys = sorted({(c["tri"], c["modes"]) for _, c in runs} | {(c["tri"], c["p3"]) for _, c in runs if "p3" in c},
+                      key=lambda k: (k[0], str(k[1])))
         with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:  # the finest take fe-prep minutes
             panels = dict(zip(keys, pool.map(lambda k: make_panels(args, k[0], k[1]), keys)))
     else:
@@ -924,6 +942,15 @@ def fixed_interface_modes(args, panel, h, n):
     return freq, shares
 
 
+def cutoff_counts(args, modes):
+    """Fixed-interface modes each panel keeps below a cutoff (panel 2, panel 3), from their body files."""
+    out = []
+    for panel in PANELS.values():
+        with h5py.File(os.path.join(args.out, "bodies", f"{panel}_h{BASE['tri']:g}_cb{modes}.h5"), "r") as f:
+            out.append(len(f["reduction/kept_modes"]))
+    return tuple(out)
+
+
 def mesh_pairs(args):
     """Successive meshes of the base model (label, coarser, finer); for cb the reference's mesh against
     CB_CHECK_MESH too, both without the contact monitor (see CB_CHECK_MESH)."""
@@ -1001,6 +1028,25 @@ def cb_convergence_text(args, R):
                  + (f"Before it: {', '.join(fmt(d) for d in mode_d[:j])} rad (ratios "
                     + ", ".join(f"{a / b:.2f}" for a, b in zip(mode_d[:j + 1], mode_d[1:j + 2])) + ").\n"
                     if j > 0 else "\n"))
+    cut = [cutoff_modes(f) for f in CB_PANEL_CUTOFFS]
+    cut_d = [errors(R(dict(BASE, modes=a)), R(dict(BASE, modes=b)), args.t_cut)["a_max"] for a, b in zip(cut[:-1], cut[1:])]
+    counts = [cutoff_counts(args, c) for c in cut]
+    k = steady_from(cut_d)
+    L.append(f"The same refinement by frequency (group `panel modes by frequency`): every fixed-interface mode below a "
+             f"cutoff, doubled per step ({', '.join(f'{f:g}' for f in CB_PANEL_CUTOFFS)} Hz: panel 2 / panel 3 keep "
+             + ", ".join(f"{a}/{b}" for a, b in counts) + " modes). Successive cutoffs differ by "
+             + ", ".join(fmt(d) for d in cut_d) + " rad in R3 (ratios "
+             + ", ".join(f"{a / b:.2f}" for a, b in zip(cut_d[:-1], cut_d[1:])) + "): "
+             + ("at least 2x less per doubling from the first." if k == 0 else
+                "not at least 2x less per doubling at every step." if k is None else
+                f"at least 2x less per doubling from {CB_PANEL_CUTOFFS[k]:g} Hz on.")
+             + " The count sequence takes the same number of modes from two different spectra (panel 2's lowest "
+             "fixed-interface modes are at 12-13 Hz, panel 3's at 3-7 Hz), so its first doubling adds modes 3 and 4 "
+             "of each: panel 3's, which the knee barely feels, while its modes 5 to 8, which it does feel, wait for "
+             "the next doubling (below); a cutoff refines both panels' spectra alike. Choosing the count's "
+             "modes by how much strain energy the 32-mode run gives each before the toggle (mbs-run's "
+             "`fixed_interface_energy`, kept with fe-prep's `modes: {keep: [...]}`) does not help here: docs/fe-prep.md, "
+             "Choosing fixed-interface modes.\n")
     if any("p3" in c for _, c in sweep_cb()):
         both = R(dict(BASE, modes=CB_SPLIT_OTHER))
         split = [errors(R(dict(BASE, modes=CB_SPLIT_OTHER, p3=m)), both, args.t_cut)["a_max"] for m in CB_SPLIT_MODES]
