@@ -468,6 +468,43 @@ int modeCount(const H5File& f) {
 
 }  // namespace
 
+namespace {
+
+// /inertia/ holds exactly what the invariants imply (fe-prep writes both from
+// the same nodal masses), so a disagreement beyond round-off is a damaged or
+// foreign file; caught here, it is an error naming the file instead of a run
+// whose dynamics use one body and whose report another (a mass invariant
+// scaled by 1e300 used to end as "step size too small").
+std::string invariantsDisagreeWithInertia(const FlexBody& b, const InertiaInvariants& inv) {
+  // Relative 1e-9: the two are computed from the same sums (measured 1e-16 on
+  // fe-prep's files); well above round-off, far below any physical difference.
+  constexpr double kAgree = 1e-9;
+  std::ostringstream os;
+  os << std::setprecision(10);
+  if (!(std::abs(inv.mass - b.mass) <= kAgree * b.mass)) {
+    os << "/invariants/mass is " << inv.mass << " kg but /inertia/mass " << b.mass
+       << " kg; the two must agree (a damaged file, or one not written by fe-prep)";
+    return os.str();
+  }
+  const Eigen::Matrix3d I = inv.inertiaAboutOrigin();
+  const double scale = b.inertia_tensor.cwiseAbs().maxCoeff();
+  const double length = std::sqrt(scale / b.mass);  // the body's radius of gyration about the origin
+  if (!((inv.first_moment / inv.mass - b.center_of_mass).norm() <= kAgree * std::max(length, b.center_of_mass.norm()))) {
+    os << "/invariants/first_moment puts the centre of mass at [" << (inv.first_moment / inv.mass).transpose()
+       << "] m but /inertia/center_of_mass says [" << b.center_of_mass.transpose() << "] m; the two must agree";
+    return os.str();
+  }
+  if (!((I - b.inertia_tensor).cwiseAbs().maxCoeff() <= kAgree * scale)) {
+    os << "the invariants (/invariants/second_moment, rotary_inertia) give an inertia about the origin of diagonal ["
+       << I.diagonal().transpose() << "] kg m^2 but /inertia/tensor has [" << b.inertia_tensor.diagonal().transpose()
+       << "]; the two must agree";
+    return os.str();
+  }
+  return "";
+}
+
+}  // namespace
+
 int flexBodyModeCount(const std::string& path) { return modeCount(H5File(path, H5File::Mode::Read)); }
 
 FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts parts) {
@@ -554,6 +591,8 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
       rowMajor(readLeading(f, "/invariants/rotary_modal_mass", {um, um}, {false, false}), nm, nm);
 
   if (const std::string why = flexBodyPhysicalProblem(b); !why.empty())
+    throw H5Error(path + ": body '" + b.name + "': " + why);
+  if (const std::string why = invariantsDisagreeWithInertia(b, inv); !why.empty())
     throw H5Error(path + ": body '" + b.name + "': " + why);
 
   if (parts == FlexBodyParts::All) {

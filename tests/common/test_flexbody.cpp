@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/flexbody.h"
@@ -347,6 +348,45 @@ TEST(FlexBodyHardening, AbsurdlyLargeNumbersAreNamedOnRead) {
     } catch (const fc::H5Error& e) {
       EXPECT_NE(std::string(e.what()).find(set), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("beyond 1e30"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// /inertia/ is what the invariants imply (issue 16, honest inertia): a file in
+// which they disagree is refused on read, naming what disagrees. Each of the
+// rigid invariants scaled within the 1e30 bound (x 1e3, and a rotary inertia
+// doubled) used to run as a different body from the one /inertia/ reports.
+TEST(FlexBodyHardening, InvariantsThatDisagreeWithInertiaAreRefused) {
+  fc::FlexBody plate = lumpedPlate(2.0, 1.3, 0.002, 1610.0, Vector3d(0.3, -0.2, 0.1), 4, 3);
+  fc::setRigidPropertiesFromLumpedMasses(plate);
+  const std::string path = tempPath("disagree.h5");
+  fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
+  ASSERT_NO_THROW(fc::readFlexBody(path));
+  for (const auto& [set, factor, named] :
+       {std::tuple<const char*, double, const char*>{"/invariants/mass", 1e3, "/invariants/mass"},
+        {"/invariants/first_moment", 1e3, "/invariants/first_moment"},
+        {"/invariants/second_moment", 1e3, "/inertia/tensor"},
+        {"/invariants/rotary_inertia", 2.0, "/inertia/tensor"},
+        {"/inertia/mass", 1.0 + 1e-6, "/inertia/mass"}}) {
+    fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    const hid_t d = H5Dopen2(f, set, H5P_DEFAULT);
+    ASSERT_GE(d, 0) << set;
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    for (double& x : v) x *= factor;
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+    try {
+      fc::readFlexBody(path);
+      ADD_FAILURE() << set << " x " << factor << " was read";
+    } catch (const fc::H5Error& e) {
+      EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("must agree"), std::string::npos) << e.what();
     }
   }
 }
