@@ -320,6 +320,25 @@ TEST(FlexBodyHardening, NonFiniteOrWrongShapedDatasetsAreNamedOnRead) {
 // recovery strains, fuzz campaign on the new datasets) were read, and the run
 // failed only writing an infinite peak reaction or failure index, naming its
 // temporary file. The reader refuses them, naming the body file and the dataset.
+// Rewrites a dataset of a written body file in place (what a damaged or
+// foreign file would hold); fails the test if the dataset is missing or empty.
+static void editDataset(const std::string& path, const char* set, const std::function<void(std::vector<double>&)>& edit) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, set, H5P_DEFAULT);
+  ASSERT_GE(d, 0) << set;
+  const hid_t space = H5Dget_space(d);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  ASSERT_GE(n, 1) << set;
+  std::vector<double> v(static_cast<std::size_t>(n));
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  edit(v);
+  H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
 TEST(FlexBodyHardening, AbsurdlyLargeNumbersAreNamedOnRead) {
   fc::FlexBody plate = lumpedPlate(2.0, 1.3, 0.002, 1610.0, Vector3d::Zero(), 4, 3);
   fc::setRigidPropertiesFromLumpedMasses(plate);
@@ -328,20 +347,7 @@ TEST(FlexBodyHardening, AbsurdlyLargeNumbersAreNamedOnRead) {
   ASSERT_NO_THROW(fc::readFlexBody(path));
   for (const char* set : {"/inertia/center_of_mass", "/invariants/mass"}) {
     fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
-    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    ASSERT_GE(f, 0);
-    const hid_t d = H5Dopen2(f, set, H5P_DEFAULT);
-    ASSERT_GE(d, 0) << set;
-    const hid_t space = H5Dget_space(d);
-    const hssize_t n = H5Sget_simple_extent_npoints(space);
-    ASSERT_GE(n, 1) << set;
-    std::vector<double> v(static_cast<std::size_t>(n));
-    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    v[0] = 1e300;
-    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Sclose(space);
-    H5Dclose(d);
-    H5Fclose(f);
+    editDataset(path, set, [](std::vector<double>& v) { v[0] = 1e300; });
     try {
       fc::readFlexBody(path);
       ADD_FAILURE() << "1e300 in " << set << " was read";
@@ -369,18 +375,9 @@ TEST(FlexBodyHardening, InvariantsThatDisagreeWithInertiaAreRefused) {
         {"/invariants/rotary_inertia", 2.0, "/inertia/tensor"},
         {"/inertia/mass", 1.0 + 1e-6, "/inertia/mass"}}) {
     fc::writeFlexBody(path, plate, fc::computeInertiaInvariants(plate), {});
-    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    ASSERT_GE(f, 0);
-    const hid_t d = H5Dopen2(f, set, H5P_DEFAULT);
-    ASSERT_GE(d, 0) << set;
-    const hid_t space = H5Dget_space(d);
-    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    for (double& x : v) x *= factor;
-    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Sclose(space);
-    H5Dclose(d);
-    H5Fclose(f);
+    editDataset(path, set, [f = factor](std::vector<double>& v) {
+      for (double& x : v) x *= f;
+    });
     try {
       fc::readFlexBody(path);
       ADD_FAILURE() << set << " x " << factor << " was read";
