@@ -112,6 +112,25 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"results", "/bodies/*/section_forces", "N, N m",
        "outputs.stresses beam bodies: section forces N V2 V3 T M2 M3 at each element midpoint, element section axes "
        "(n_out, n_elements, 6)"},
+      {"results", "/stress_time", "s",
+       "outputs.stress_every given: the output times of the rows the full stress fields hold (rows 0, K, 2K, ... "
+       "and the last)"},
+      {"results", "/bodies/*/failure_index_peak", "1",
+       "outputs.stresses bodies with ply strengths: largest Tsai-Wu index of each ply over every output row "
+       "(n_elements, n_plies)"},
+      {"results", "/bodies/*/failure_index_peak_time", "s",
+       "time of the first output row at which each element and ply reaches its failure_index_peak (n_elements, n_plies)"},
+      {"results", "/bodies/*/ply_stress_at_peak", "Pa",
+       "sigma_11 sigma_22 tau_12 of each ply in the row of its failure_index_peak (n_elements, n_plies, 3)"},
+      {"results", "/bodies/*/ply_stress_max", "Pa",
+       "outputs.stresses bodies without ply strengths: largest of each ply stress component over every output row "
+       "(n_elements, n_plies, 3)"},
+      {"results", "/bodies/*/ply_stress_min", "Pa",
+       "the same, smallest (n_elements, n_plies, 3)"},
+      {"results", "/bodies/*/section_forces_max", "N, N m",
+       "outputs.stresses beam bodies: largest of each section force component over every output row (n_elements, 6)"},
+      {"results", "/bodies/*/section_forces_min", "N, N m",
+       "the same, smallest (n_elements, 6)"},
       {"results", "/joints/*/angle", "rad",
        "revolute angle: rotation of the second body relative to the first about the axis, unwrapped"},
       {"results", "/joints/*/reaction_force", "N", "joint reaction force on the first body, global"},

@@ -222,6 +222,15 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
   H5File f(results_path, H5File::Mode::Read);
   f.checkFormat("results", 1);
   const Eigen::VectorXd t = f.readVector("/time");
+  // The rows of the full stress fields: /stress_time when outputs.stress_every
+  // decimated them, else every row. A frame shows the latest stress row at or
+  // before its time (docs/file-formats.md, "Animation").
+  const Eigen::VectorXd ts = f.exists("/stress_time") ? f.readVector("/stress_time") : t;
+  std::vector<Eigen::Index> stress_row(static_cast<std::size_t>(t.size()), 0);
+  for (Eigen::Index k = 0, j = 0; k < t.size(); ++k) {
+    while (j + 1 < ts.size() && ts(j + 1) <= t(k)) ++j;
+    stress_row[static_cast<std::size_t>(k)] = j;
+  }
   struct Track {
     Eigen::MatrixXd r, p, w;
     Eigen::MatrixXd failure;  // (n_el, n_out): max over plies of failure_index, bodies with one
@@ -236,12 +245,12 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
     if (b.stress && b.stress->failure_output >= 0 && f.exists(g + "failure_index")) {
       const std::vector<hsize_t> sh = f.shape(g + "failure_index");
       const long ne = b.stress->n_elements, np = b.stress->n_plies;
-      if (sh.size() != 3 || sh[0] != static_cast<hsize_t>(t.size()) || sh[1] != static_cast<hsize_t>(ne) ||
+      if (sh.size() != 3 || sh[0] != static_cast<hsize_t>(ts.size()) || sh[1] != static_cast<hsize_t>(ne) ||
           sh[2] != static_cast<hsize_t>(np) || ne != static_cast<long>(shapes[tracks.size()].polys.size()))
         throw std::runtime_error(results_path + ": " + g + "failure_index does not match the body's elements and plies");
       const std::vector<double> fi = f.readArray(g + "failure_index");
-      tr.failure = Eigen::Map<const Eigen::MatrixXd>(fi.data(), np, ne * t.size()).colwise().maxCoeff();
-      tr.failure.resize(ne, t.size());
+      tr.failure = Eigen::Map<const Eigen::MatrixXd>(fi.data(), np, ne * ts.size()).colwise().maxCoeff();
+      tr.failure.resize(ne, ts.size());
     }
     tracks.push_back(std::move(tr));
   }
@@ -269,7 +278,7 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
       if (tr.w.size()) w = tr.w.row(k).transpose();
       const std::string file = stem + frame + "_" + safeName(model.bodies[b].name) + ".vtp";
       Eigen::VectorXd fmax;
-      if (tr.failure.size()) fmax = tr.failure.col(k);
+      if (tr.failure.size()) fmax = tr.failure.col(stress_row[static_cast<std::size_t>(k)]);
       writeBodyFrame(folder + "/" + file, shapes[b], r, A, tr.w.size() ? &w : nullptr, fmax.size() ? &fmax : nullptr);
       vtm << "<DataSet index=\"" << b << "\" name=\"" << xmlEscape(model.bodies[b].name) << "\" file=\""
           << xmlEscape(file) << "\"/>\n";

@@ -203,6 +203,10 @@ struct Model {
   std::vector<Event> events;
   // Contact monitor (`outputs: {distances: [[A, B], ...]}`): body index pairs.
   std::vector<std::array<int, 2>> distance_pairs;
+  // `outputs: {stress_every: K}`: the full stress fields get every K-th output
+  // row (and the last) with their own /stress_time; 0 when the key is absent
+  // (every row, no /stress_time). The envelope takes every row either way.
+  int stress_every = 0;
   Settings settings;
   int nq = 0, nv = 0;  // 7 + modes and 6 + modes per free body
   std::string source;  // scene file, for messages

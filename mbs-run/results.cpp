@@ -33,6 +33,11 @@ std::vector<Channel> resultChannels(const Model& m) {
     c.push_back({name, 1, true, [get](const Sample& s, double* out) { out[0] = get(s); }});
   };
   scalar("time", [](const Sample& s) { return s.time; });
+  // The rows the full stress fields hold, when outputs.stress_every is given.
+  if (m.stress_every > 0) {
+    scalar("stress_time", [](const Sample& s) { return s.time; });
+    c.back().decimated = true;
+  }
   for (std::size_t k = 0; k < m.bodies.size(); ++k) {
     const std::string b = "bodies/" + m.bodies[k].name + "/";
     vec3(b + "position", [k](const Sample& s) { return s.bodies[k].position; });
@@ -76,7 +81,7 @@ std::vector<Channel> resultChannels(const Model& m) {
                        const Eigen::VectorXd& f = s.bodies[k].stress[i];
                        std::copy(f.data(), f.data() + n, out);
                      },
-                     std::vector<hsize_t>(o.dims.begin(), o.dims.end())});
+                     std::vector<hsize_t>(o.dims.begin(), o.dims.end()), m.stress_every > 1});
       }
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
@@ -208,11 +213,14 @@ ResultsFileWriter::ResultsFileWriter(const std::string& path, const Model& model
     mdc.max_size = 4 << 20;
     H5Fset_mdc_config(file_.file().id(), &mdc);
   }
+  every_ = static_cast<unsigned long long>(std::max(1, model.stress_every));
   for (const Channel& c : channels_) {
     datasets_.push_back(createExtendible(file_.file(), c, chunk));
     buffers_.emplace_back();
-    buffers_.back().reserve(block_rows_ * c.columns);
+    buffers_.back().reserve((c.decimated ? block_rows_ / every_ + 1 : block_rows_) * c.columns);
   }
+  channel_rows_.assign(channels_.size(), 0);
+  skipped_.resize(channels_.size());
   last_flush_ = std::chrono::steady_clock::now();
 }
 
@@ -222,11 +230,18 @@ ResultsFileWriter::~ResultsFileWriter() {
 }
 
 void ResultsFileWriter::write(const Sample& s) {
+  const bool keep = (written_ + buffered_) % every_ == 0;  // this row's index, 0-based
   for (std::size_t k = 0; k < channels_.size(); ++k) {
+    if (channels_[k].decimated && !keep) {
+      skipped_[k].resize(channels_[k].columns);
+      channels_[k].read(s, skipped_[k].data());
+      continue;
+    }
     std::vector<double>& b = buffers_[k];
     b.resize(b.size() + channels_[k].columns);
     channels_[k].read(s, b.data() + b.size() - channels_[k].columns);
   }
+  skipped_pending_ = !keep;
   ++buffered_;
   const bool due = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >
                    kFlushSeconds;
@@ -234,14 +249,16 @@ void ResultsFileWriter::write(const Sample& s) {
 }
 
 void ResultsFileWriter::writeBlock() {
-  if (buffered_ > 0) {
-    for (std::size_t k = 0; k < channels_.size(); ++k) {
-      appendRows(datasets_[k], channels_[k], file_.temporaryPath(), written_, buffered_, buffers_[k].data());
-      buffers_[k].clear();
-    }
-    written_ += buffered_;
-    buffered_ = 0;
+  // Each channel its own rows: the decimated ones fewer (none in most blocks).
+  for (std::size_t k = 0; k < channels_.size(); ++k) {
+    const unsigned long long rows = buffers_[k].size() / static_cast<unsigned long long>(channels_[k].columns);
+    if (rows > 0)
+      appendRows(datasets_[k], channels_[k], file_.temporaryPath(), channel_rows_[k], rows, buffers_[k].data());
+    channel_rows_[k] += rows;
+    buffers_[k].clear();
   }
+  written_ += buffered_;
+  buffered_ = 0;
   // What is on disk is a valid HDF5 file up to here (HDF5 1.10 has no
   // single-writer journal: a flush is the consistency point).
   if (H5Fflush(file_.file().id(), H5F_SCOPE_GLOBAL) < 0)
@@ -250,6 +267,12 @@ void ResultsFileWriter::writeBlock() {
 }
 
 void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const std::string& inputs_sha256) {
+  // The final row always goes to the decimated fields too (the state the run ended in).
+  if (skipped_pending_) {
+    for (std::size_t k = 0; k < channels_.size(); ++k)
+      if (channels_[k].decimated) buffers_[k].insert(buffers_[k].end(), skipped_[k].begin(), skipped_[k].end());
+    skipped_pending_ = false;
+  }
   writeBlock();
   for (hid_t& d : datasets_) {
     if (H5Dclose(d) < 0) throw OutputError(file_.temporaryPath() + ": cannot close a dataset" + fc::hdf5ErrorReason());
@@ -277,6 +300,20 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     if (k < r.peak_fixed_interface_energy.size() && r.peak_fixed_interface_energy[k].size()) {
       f.writeVector(g + "/fixed_interface_energy_peak", r.peak_fixed_interface_energy[k]);
       f.writeIntVector(g + "/fixed_interface_modes", r.fixed_interface_modes[k]);
+    }
+  }
+  // The envelope of the recovered stresses over every output row (stress_envelope.h).
+  for (std::size_t k = 0; k < model.bodies.size() && k < r.stress_envelopes.size(); ++k) {
+    if (!model.bodies[k].stress) continue;
+    for (const EnvelopeDataset& d : r.stress_envelopes[k].datasets(*model.bodies[k].stress)) {
+      const std::string path = "/bodies/" + model.bodies[k].name + "/" + d.name;
+      const std::vector<double> v(d.values.data(), d.values.data() + d.values.size());
+      if (d.dims.size() == 3) {
+        f.writeArray3(path, v, d.dims[0], d.dims[1], d.dims[2]);
+      } else {  // (n_el, n_plies) or (n_el, 6), C order
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        f.writeMatrix(path, Eigen::Map<const RowMajor>(d.values.data(), d.dims[0], d.dims[1]));
+      }
     }
   }
   // Contact monitor summary: the smallest distance of each pair and when.

@@ -28,6 +28,9 @@ struct Channel {
   // Trailing dimensions of a dataset of rank > 2 (their product is `columns`),
   // e.g. (n_elements, n_plies, 3) of ply_stress; empty for rank 1 and 2.
   std::vector<hsize_t> dims = {};
+  // A full stress field (or /stress_time): with outputs.stress_every K it gets
+  // only rows 0, K, 2K, ... and the last (docs/stresses.md).
+  bool decimated = false;
 };
 // "distances/A-B": the contact monitor's channel of Model::distance_pairs[k].
 std::string distanceChannel(const Model& model, std::size_t k);
@@ -54,6 +57,13 @@ class ResultsFileWriter : public SampleSink {
   std::vector<hid_t> datasets_;
   std::vector<std::vector<double>> buffers_;  // per channel, row-major block
   unsigned long long block_rows_ = 0, buffered_ = 0, written_ = 0;
+  // Decimation of the full stress fields (Model::stress_every): rows written
+  // per channel, and the latest row the decimated channels skipped, which
+  // finish() appends so that the final state is always there.
+  unsigned long long every_ = 1;
+  std::vector<unsigned long long> channel_rows_;
+  std::vector<std::vector<double>> skipped_;
+  bool skipped_pending_ = false;
   std::chrono::steady_clock::time_point last_flush_;
 };
 

@@ -50,6 +50,9 @@ void RunSummary::observe(const Model& m, const Sample& s) {
       peak_fixed_interface_energy[k] =
           peak_fixed_interface_energy[k].cwiseMax(fixedInterfaceStrainEnergies(fb, s.bodies[k].modal));
   }
+  if (stress_envelopes.size() != s.bodies.size()) stress_envelopes.assign(s.bodies.size(), StressEnvelope());
+  for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k)
+    if (const auto& r = m.bodies[k].stress) stress_envelopes[k].observe(*r, s.bodies[k].stress, s.time);
   for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
     const auto& r = m.bodies[k].stress;
     if (!r || r->failure_output < 0 || s.bodies[k].stress.size() != r->outputs.size()) continue;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mbs-run/sampling.h"
+#include "mbs-run/stress_envelope.h"
 
 namespace fc::mbs {
 
@@ -67,6 +68,11 @@ struct RunSummary {
     long element = -1;
   };
   SectionMomentPeak peak_section_moment;
+  // Per body (empty for bodies without stress recovery): the envelope of its
+  // recovered fields over every output row (stress_envelope.h), written as
+  // /bodies/NAME/failure_index_peak etc. Its largest failure_index_peak is
+  // peak_failure_index.value: both fold the same rows.
+  std::vector<StressEnvelope> stress_envelopes;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes

@@ -598,8 +598,17 @@ void parseStresses(const InputNode& list, Model& m) {
 }
 
 void parseOutputs(const InputNode& o, Model& m) {
-  o.allowKeys({"distances", "stresses"});
+  o.allowKeys({"distances", "stresses", "stress_every"});
   if (o.has("stresses")) parseStresses(o["stresses"], m);
+  if (o.has("stress_every")) {
+    // Decimates the full stress fields only (docs/stresses.md); the bound keeps
+    // a typo (an output count, a time in ms) from silently leaving one row.
+    const InputNode k = o["stress_every"];
+    const long every = k.asInt();
+    if (every < 1 || every > 1000000) k.fail("expected a whole number of output rows from 1 to 1000000, got " + std::to_string(every));
+    if (!o.has("stresses")) k.fail("stress_every decimates the fields of outputs.stresses, which is not given");
+    m.stress_every = static_cast<int>(every);
+  }
   if (!o.has("distances")) return;
   const InputNode d = o["distances"];
   if (!d.isSequence()) d.fail("expected a list of body pairs [[A, B], ...]");

@@ -4,11 +4,13 @@
 // classical lamination theory and CalculiX: tests/fe-prep/test_stress_validation.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
+#include "common/h5io.h"
 #include "common/laminate.h"
 #include "common/materials.h"
 #include "flexible/random_body.h"
@@ -311,6 +313,202 @@ TEST(StressScene, AnimationCarriesTheLargestPlyIndexPerElement) {
   }
   std::filesystem::remove_all(dir);
   std::remove(body.c_str());
+}
+
+
+// ---- envelope and decimation (docs/stresses.md, "Envelope and decimation")
+
+// Three free random bodies given modal velocities, one of each kind of
+// recovery: p a shell with strengths, w a shell without, b a beam.
+struct EnvelopeBodies {
+  std::string p, w, b;
+  void remove() const {
+    for (const std::string* f : {&p, &w, &b}) std::remove(f->c_str());
+  }
+};
+EnvelopeBodies envelopeBodies() {
+  EnvelopeBodies e;
+  e.p = stressBody(true, "env_p");
+  fc::FlexBody wb = fc::testing::randomBody(6, 3, 5);
+  wb.elements["triangles"] = (fc::IndexMatrix(4, 3) << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5).finished();
+  wb.stress.centroids = Eigen::MatrixXd::Random(4, 3);
+  wb.stress.shell_strains = Eigen::MatrixXd::Random(24, 3) * 1e-3;
+  fc::Laminate lam;
+  lam.plies = {{"a", 0.001, 0.0}, {"a", 0.001, 90.0}};
+  wb.stress.plies = fc::plyTable(lam, materials("materials:\n  a: {type: isotropic, E: 70e9, nu: 0.3, rho: 2700}\n"));
+  e.w = writeTempBody(wb, "env_w");
+  fc::FlexBody bb = fc::testing::randomBody(5, 3, 7);
+  bb.elements.clear();
+  bb.elements["beams"] = (fc::IndexMatrix(4, 2) << 0, 1, 1, 2, 2, 3, 3, 4).finished();
+  bb.stress.centroids = Eigen::MatrixXd::Random(4, 3);
+  bb.stress.beam_resultants = Eigen::MatrixXd::Random(24, 3) * 1e3;
+  e.b = writeTempBody(bb, "env_b");
+  return e;
+}
+
+// Rows at 0, 0.05, ..., t_end; `extra` goes into outputs.
+std::string envelopeScene(const EnvelopeBodies& e, const std::string& path, double t_end, const std::string& extra) {
+  std::ofstream f(path);
+  f << "bodies:\n"
+    << "  - {name: p, flexible: {file: " << e.p << "}, modal_velocities: [0.01, -0.02, 0.015]}\n"
+    << "  - {name: w, flexible: {file: " << e.w << "}, modal_velocities: [-0.01, 0.02, 0.01]}\n"
+    << "  - {name: b, flexible: {file: " << e.b << "}, modal_velocities: [0.02, 0.01, -0.01]}\n"
+    << "simulation: {t_end: " << t_end << ", output_step: 0.05}\n"
+    << "outputs: {stresses: [p, w, b]" << extra << "}\n";
+  return path;
+}
+
+std::string tempDir(const std::string& tag) {
+  const std::string dir = std::filesystem::temp_directory_path() / (tag + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Runs the scene to a results file through the streaming writer, as mbs-run does.
+std::string runToFile(const std::string& scene, const std::string& out) {
+  const Model m = loadScene(scene);
+  const Results r = simulate(m);
+  writeResults(out, m, r, "test");
+  return out;
+}
+
+TEST(StressEnvelope, IsTheMaxOverEveryFullRowAndItsTime) {
+  // Without stress_every every row is written, and the envelope must be what
+  // the test computes from those rows by itself: the same numbers exactly
+  // (same doubles compared, nothing recomputed), the FIRST row reaching the
+  // peak for its time, the ply stresses of that row.
+  const std::string dir = tempDir("stress_env");
+  const EnvelopeBodies bodies = envelopeBodies();
+  const std::string res = runToFile(envelopeScene(bodies, dir + "/s.yaml", 0.5, ""), dir + "/r.h5");
+  fc::H5File f(res, fc::H5File::Mode::Read);
+  EXPECT_FALSE(f.exists("/stress_time"));  // absent key: the file as before
+  const Eigen::VectorXd t = f.readVector("/time");
+  const long n = t.size();
+  ASSERT_EQ(n, 11);
+  // p: failure index (n, 4, 3), ply stresses (n, 4, 3, 3).
+  ASSERT_EQ(f.shape("/bodies/p/failure_index"), (std::vector<hsize_t>{11, 4, 3}));
+  const std::vector<double> fi = f.readArray("/bodies/p/failure_index"), ps = f.readArray("/bodies/p/ply_stress");
+  const std::vector<double> peak = f.readArray("/bodies/p/failure_index_peak"),
+                            when = f.readArray("/bodies/p/failure_index_peak_time"),
+                            at = f.readArray("/bodies/p/ply_stress_at_peak");
+  ASSERT_EQ(f.shape("/bodies/p/failure_index_peak"), (std::vector<hsize_t>{4, 3}));
+  ASSERT_EQ(f.shape("/bodies/p/failure_index_peak_time"), (std::vector<hsize_t>{4, 3}));
+  ASSERT_EQ(f.shape("/bodies/p/ply_stress_at_peak"), (std::vector<hsize_t>{4, 3, 3}));
+  double largest = -1e300;
+  int rows_differ = 0;  // the peaks must not all sit in one row, or the time test is weak
+  for (int i = 0; i < 12; ++i) {
+    long row = 0;
+    for (long k = 1; k < n; ++k)
+      if (fi[k * 12 + i] > fi[row * 12 + i]) row = k;
+    rows_differ += row != 0 && row != n - 1;
+    EXPECT_EQ(peak[i], fi[row * 12 + i]) << i;
+    EXPECT_EQ(when[i], t(row)) << i;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(at[3 * i + c], ps[row * 36 + 3 * i + c]) << i << " " << c;
+    largest = std::max(largest, peak[i]);
+  }
+  EXPECT_GT(rows_differ, 0);
+  // The summary's largest index is the envelope's largest.
+  EXPECT_EQ(f.doubleAttribute("/", "peak_failure_index"), largest);
+  EXPECT_FALSE(f.exists("/bodies/p/ply_stress_max"));
+  // w (no strengths): min and max of each ply stress component; b: of each section force.
+  for (const std::string& field : {std::string("/bodies/w/ply_stress"), std::string("/bodies/b/section_forces")}) {
+    const std::vector<double> v = f.readArray(field), hi = f.readArray(field + "_max"), lo = f.readArray(field + "_min");
+    std::vector<hsize_t> trailing = f.shape(field);
+    ASSERT_EQ(trailing[0], static_cast<hsize_t>(n));
+    trailing.erase(trailing.begin());
+    EXPECT_EQ(f.shape(field + "_max"), trailing);
+    const std::size_t w = hi.size();
+    ASSERT_EQ(v.size(), n * w);
+    for (std::size_t i = 0; i < w; ++i) {
+      double mx = v[i], mn = v[i];
+      for (long k = 1; k < n; ++k) mx = std::max(mx, v[k * w + i]), mn = std::min(mn, v[k * w + i]);
+      EXPECT_EQ(hi[i], mx) << field << " " << i;
+      EXPECT_EQ(lo[i], mn) << field << " " << i;
+      EXPECT_LT(mn, mx) << field << " " << i;  // the rows do differ
+    }
+  }
+  EXPECT_FALSE(f.exists("/bodies/w/failure_index_peak"));
+  EXPECT_FALSE(f.exists("/bodies/b/failure_index_peak"));
+  std::filesystem::remove_all(dir);
+  bodies.remove();
+}
+
+TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) {
+  // stress_every: 3 against stress_every: 1 of the same run: the full fields
+  // hold exactly rows 0, 3, 6, ... and the last, bit for bit; everything else
+  // (the envelope included) is identical. 11 rows (last 10, not a multiple)
+  // and 10 rows (last 9, a multiple: written once).
+  const EnvelopeBodies bodies = envelopeBodies();
+  for (const double t_end : {0.5, 0.45}) {
+    const std::string dir = tempDir("stress_every");
+    const std::string s3 = envelopeScene(bodies, dir + "/s3.yaml", t_end, ", stress_every: 3");
+    const std::string r1 = runToFile(envelopeScene(bodies, dir + "/s1.yaml", t_end, ", stress_every: 1"), dir + "/r1.h5");
+    const std::string r3 = runToFile(s3, dir + "/r3.h5");
+    fc::H5File f1(r1, fc::H5File::Mode::Read), f3(r3, fc::H5File::Mode::Read);
+    const Eigen::VectorXd t = f1.readVector("/time");
+    const long n = t.size();
+    ASSERT_EQ(n, t_end == 0.5 ? 11 : 10);
+    std::vector<long> kept;
+    for (long k = 0; k < n; k += 3) kept.push_back(k);
+    if (kept.back() != n - 1) kept.push_back(n - 1);
+    EXPECT_EQ(f1.readVector("/stress_time"), t);  // stress_every: 1 keeps every row
+    const Eigen::VectorXd ts = f3.readVector("/stress_time");
+    ASSERT_EQ(ts.size(), static_cast<long>(kept.size()));
+    for (std::size_t j = 0; j < kept.size(); ++j) EXPECT_EQ(ts(j), t(kept[j])) << j;
+    for (const std::string& d : {"/bodies/p/ply_stress", "/bodies/p/failure_index", "/bodies/w/ply_stress",
+                                 "/bodies/b/section_forces"}) {
+      std::vector<hsize_t> s1 = f1.shape(d), s3 = f3.shape(d);
+      ASSERT_EQ(s1[0], static_cast<hsize_t>(n)) << d;
+      ASSERT_EQ(s3[0], kept.size()) << d;
+      s1.erase(s1.begin());
+      s3.erase(s3.begin());
+      ASSERT_EQ(s1, s3) << d;
+      const std::vector<double> a = f1.readArray(d), b = f3.readArray(d);
+      const std::size_t w = a.size() / n;
+      for (std::size_t j = 0; j < kept.size(); ++j)
+        for (std::size_t i = 0; i < w; ++i) ASSERT_EQ(b[j * w + i], a[kept[j] * w + i]) << d << " row " << kept[j];
+    }
+    for (const std::string& d : {"/time", "/bodies/p/modal_coordinates", "/bodies/p/failure_index_peak",
+                                 "/bodies/p/failure_index_peak_time", "/bodies/p/ply_stress_at_peak",
+                                 "/bodies/w/ply_stress_max", "/bodies/w/ply_stress_min", "/bodies/b/section_forces_max",
+                                 "/bodies/b/section_forces_min"})
+      EXPECT_EQ(f1.readArray(d), f3.readArray(d)) << d;
+    EXPECT_EQ(f1.doubleAttribute("/", "peak_failure_index"), f3.doubleAttribute("/", "peak_failure_index"));
+    // Some peak of p lies in a row stress_every: 3 does not write, or the
+    // envelope's claim to see every row is untested.
+    const std::vector<double> when = f3.readArray("/bodies/p/failure_index_peak_time");
+    EXPECT_TRUE(std::any_of(when.begin(), when.end(), [&](double x) { return (ts.array() != x).all(); }));
+    // The animation holds the latest stress row.
+    const Model m3 = loadScene(s3);
+    EXPECT_NO_THROW(writeAnimation(dir + "/a.pvd", s3, m3, r3));
+    std::filesystem::remove_all(dir);
+  }
+  bodies.remove();
+}
+
+TEST(StressEnvelope, StressEveryErrorsAreLocated) {
+  const std::string p = stressBody(true, "env_err");
+  const std::string head = "bodies:\n  - {name: p, flexible: {file: " + p + "}}\nsimulation: {t_end: 0.1}\n";  // lines 1-3
+  auto expect = [&](const std::string& outputs, const std::string& words) {
+    try {
+      sceneFromText(head + "outputs: " + outputs + "\n");
+      FAIL() << outputs;
+    } catch (const fc::InputError& e) {
+      EXPECT_EQ(e.line(), 4) << e.what();
+      EXPECT_NE(e.keyPath().find("outputs.stress_every"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  expect("{stresses: [p], stress_every: 0}", "expected a whole number of output rows from 1 to 1000000, got 0");
+  expect("{stresses: [p], stress_every: -3}", "got -3");
+  expect("{stresses: [p], stress_every: 2.5}", "expected an integer, got '2.5'");
+  expect("{stresses: [p], stress_every: ten}", "expected an integer");
+  expect("{stresses: [p], stress_every: [3]}", "expected an integer");
+  expect("{stresses: [p], stress_every: 2000000}", "got 2000000");
+  expect("{stress_every: 3}", "outputs.stresses, which is not given");
+  EXPECT_EQ(sceneFromText(head + "outputs: {stresses: [p], stress_every: 7}\n").stress_every, 7);
+  EXPECT_EQ(sceneFromText(head + "outputs: {stresses: [p]}\n").stress_every, 0);
+  std::remove(p.c_str());
 }
 
 }  // namespace
