@@ -175,6 +175,13 @@ def load(spec):
     panels, trusses = [], []
     with h5py.File(path, "r") as res:
         t = res["time"][:]
+        # This report pairs the full fields with /time row by row (the trusses'
+        # joint forces too): a run with outputs.stress_every > 1 has fewer
+        # field rows (their times in /stress_time; docs/stresses.md).
+        if "stress_time" in res and len(res["stress_time"]) != len(t):
+            sys.exit("stress_report.py: %s decimates its stress fields (outputs.stress_every > 1); run the scene "
+                     "without stress_every for this report, or read the envelope (failure_index_peak) it writes"
+                     % path)
         for name in asked:
             if "bodies/%s/failure_index" % name in res:
                 panels.append(Panel(name, res, os.path.join(where, files[name])))
