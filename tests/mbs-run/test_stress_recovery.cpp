@@ -326,9 +326,23 @@ struct EnvelopeBodies {
     for (const std::string* f : {&p, &w, &b}) std::remove(f->c_str());
   }
 };
-EnvelopeBodies envelopeBodies() {
+// p has n_el triangles (the four of stressBody repeated): 700 make a row wider
+// than the results writer's 1 MB block holds 16 of, so that a run of 41 rows
+// is written in three blocks (ResultsFileWriter::writeBlock).
+EnvelopeBodies envelopeBodies(int n_el = 4) {
   EnvelopeBodies e;
-  e.p = stressBody(true, "env_p");
+  {
+    fc::FlexBody b = fc::testing::randomBody(6, 3, 5);
+    fc::IndexMatrix tri(n_el, 3);
+    for (int k = 0; k < n_el; ++k) tri.row(k) << k % 4, k % 4 + 1, k % 4 + 2;
+    b.elements["triangles"] = tri;
+    b.stress.centroids = Eigen::MatrixXd::Random(n_el, 3);
+    b.stress.shell_strains = Eigen::MatrixXd::Random(6 * n_el, 3) * 1e-3;
+    fc::Laminate lam;
+    lam.plies = {{"im6", 0.0005, 0.0}, {"im6", 0.0005, 45.0}, {"im6", 0.0005, -45.0}};
+    b.stress.plies = fc::plyTable(lam, materials(kIm6));
+    e.p = writeTempBody(b, "env_p");
+  }
   fc::FlexBody wb = fc::testing::randomBody(6, 3, 5);
   wb.elements["triangles"] = (fc::IndexMatrix(4, 3) << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5).finished();
   wb.stress.centroids = Eigen::MatrixXd::Random(4, 3);
@@ -436,10 +450,11 @@ TEST(StressEnvelope, IsTheMaxOverEveryFullRowAndItsTime) {
 TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) {
   // stress_every: 3 against stress_every: 1 of the same run: the full fields
   // hold exactly rows 0, 3, 6, ... and the last, bit for bit; everything else
-  // (the envelope included) is identical. 11 rows (last 10, not a multiple)
-  // and 10 rows (last 9, a multiple: written once).
-  const EnvelopeBodies bodies = envelopeBodies();
-  for (const double t_end : {0.5, 0.45}) {
+  // (the envelope included) is identical. 11 rows (last 10, not a multiple),
+  // 10 rows (last 9, a multiple: written once), and 41 rows of a wide body
+  // written in three blocks of 16.
+  for (const auto& [n_el, t_end] : {std::pair{4, 0.5}, std::pair{4, 0.45}, std::pair{700, 2.0}}) {
+    const EnvelopeBodies bodies = envelopeBodies(n_el);
     const std::string dir = tempDir("stress_every");
     const std::string s3 = envelopeScene(bodies, dir + "/s3.yaml", t_end, ", stress_every: 3");
     const std::string r1 = runToFile(envelopeScene(bodies, dir + "/s1.yaml", t_end, ", stress_every: 1"), dir + "/r1.h5");
@@ -447,7 +462,7 @@ TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) 
     fc::H5File f1(r1, fc::H5File::Mode::Read), f3(r3, fc::H5File::Mode::Read);
     const Eigen::VectorXd t = f1.readVector("/time");
     const long n = t.size();
-    ASSERT_EQ(n, t_end == 0.5 ? 11 : 10);
+    ASSERT_EQ(n, std::lround(t_end / 0.05) + 1);
     std::vector<long> kept;
     for (long k = 0; k < n; k += 3) kept.push_back(k);
     if (kept.back() != n - 1) kept.push_back(n - 1);
@@ -482,8 +497,8 @@ TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) 
     const Model m3 = loadScene(s3);
     EXPECT_NO_THROW(writeAnimation(dir + "/a.pvd", s3, m3, r3));
     std::filesystem::remove_all(dir);
+    bodies.remove();
   }
-  bodies.remove();
 }
 
 TEST(StressEnvelope, StressEveryErrorsAreLocated) {
