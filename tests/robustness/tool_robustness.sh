@@ -207,6 +207,15 @@ write_failures() {
 }
 write_failures $FP wbody.yaml out_body.h5 out_body.xdmf
 write_failures $MR wscene.yaml out_res.h5
+# outputs.stress_every: the decimated fields, /stress_time and the envelope cut the same
+# way; the key's bad value named with file, line and key at the command line.
+sed 's/outputs: {stresses: \[p\], distances: \[\[p, r\]\]}/outputs: {stresses: [p], distances: [[p, r]], stress_every: 7}/' \
+  wscene.yaml > wscene7.yaml
+grep -q "stress_every: 7" wscene7.yaml || bad "wscene7.yaml: the sed did not add stress_every"
+write_failures $MR wscene7.yaml out_res.h5
+sed 's/stress_every: 7/stress_every: 0/' wscene7.yaml > wscene0.yaml
+expect_error 2 "wscene0.yaml:11:61: outputs.stress_every: expected a whole number of output rows from 1 to 1000000, got 0" \
+  $MR wscene0.yaml -o out.h5 -q
 
 [ $FAIL = 0 ] && echo "all robustness checks passed"
 exit $FAIL
