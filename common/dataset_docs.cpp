@@ -105,13 +105,13 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"results", "/bodies/*/modal_energy_peak", "J", "each mode's largest modal_energy over the run"},
       {"results", "/bodies/*/ply_stress", "Pa",
        "outputs.stresses bodies: sigma_11 sigma_22 tau_12 of each ply in its material axes at its mid-thickness, "
-       "at the element centroids (n_out, n_elements, n_plies, 3)"},
+       "at the element centroids (n_out, n_elements, n_plies, 3); with outputs.stress_every the rows of /stress_time"},
       {"results", "/bodies/*/failure_index", "1",
        "outputs.stresses bodies with ply strengths: Tsai-Wu index of each ply at each element centroid, failure at 1 "
-       "(n_out, n_elements, n_plies)"},
+       "(n_out, n_elements, n_plies); with outputs.stress_every the rows of /stress_time"},
       {"results", "/bodies/*/section_forces", "N, N m",
        "outputs.stresses beam bodies: section forces N V2 V3 T M2 M3 at each element midpoint, element section axes "
-       "(n_out, n_elements, 6)"},
+       "(n_out, n_elements, 6); with outputs.stress_every the rows of /stress_time"},
       {"results", "/stress_time", "s",
        "outputs.stress_every given: the output times of the rows the full stress fields hold (rows 0, K, 2K, ... "
        "and the last)"},
