@@ -462,14 +462,14 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       spec.modes_node.fail("mode " + std::to_string(solved) + " asked but the eigen-solver found " +
                            std::to_string(modal.eigenvalues.size()));
     kept = spec.keep_modes;
-    ModalResult chosen = modal;
-    chosen.eigenvalues.resize(static_cast<long>(kept.size()));
-    chosen.vectors.resize(modal.vectors.rows(), static_cast<long>(kept.size()));
+    // In place: the numbers ascend, so mode kept[j] - 1 >= j is read before
+    // any later column overwrites it.
     for (std::size_t j = 0; j < kept.size(); ++j) {
-      chosen.eigenvalues(static_cast<long>(j)) = modal.eigenvalues(kept[j] - 1);
-      chosen.vectors.col(static_cast<long>(j)) = modal.vectors.col(kept[j] - 1);
+      modal.eigenvalues(static_cast<long>(j)) = modal.eigenvalues(kept[j] - 1);
+      modal.vectors.col(static_cast<long>(j)) = modal.vectors.col(kept[j] - 1);
     }
-    modal = std::move(chosen);
+    modal.eigenvalues.conservativeResize(static_cast<long>(kept.size()));
+    modal.vectors.conservativeResize(Eigen::NoChange, static_cast<long>(kept.size()));
   }
   body.kept_modes = kept;
   body.kept_eigenvalues = modal.eigenvalues;

@@ -11,6 +11,7 @@
 #include "common/version.h"
 #include "mbs-run/animation.h"
 #include "mbs-run/constraints.h"
+#include "mbs-run/flexible/flexible_body.h"
 #include "mbs-run/results.h"
 #include "mbs-run/scene.h"
 #include "mbs-run/simulation.h"
@@ -94,7 +95,7 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
   for (std::size_t k = 0; k < m.bodies.size() && k < r.peak_fixed_interface_energy.size(); ++k) {
     const Eigen::VectorXd& e = r.peak_fixed_interface_energy[k];
     if (e.size() == 0) continue;
-    const fc::mbs::ModeRanking rank = fc::mbs::rankByPeakEnergy(e, r.fixed_interface_modes[k]);
+    const fc::mbs::ModeRanking rank = fc::mbs::rankByPeakEnergy(e, m.bodies[k].flex->fixed_interface_modes);
     std::string list;
     for (std::size_t i = 0; i < rank.modes.size() && i < 12; ++i) {
       char buf[48];

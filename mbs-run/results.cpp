@@ -61,9 +61,9 @@ std::vector<Channel> resultChannels(const Model& m) {
                    }});
       // Craig-Bampton bodies: each kept fixed-interface mode's strain energy
       // per row, to rank them over any time window (flexible_body.h).
-      if (const long nf = m.bodies[k].flex->fixed_interface_eigenvalues.size();
-          m.bodies[k].flex->fixed_interface_coordinates.size() && nf > 0) {
+      if (m.bodies[k].flex->fixed_interface_coordinates.size()) {
         const auto flex = m.bodies[k].flex;
+        const long nf = flex->fixed_interface_eigenvalues.size();
         c.push_back({b + "fixed_interface_energy", static_cast<int>(nf), false, [k, nf, flex](const Sample& s, double* out) {
                        const Eigen::VectorXd e = fixedInterfaceStrainEnergies(*flex, s.bodies[k].modal);
                        for (long i = 0; i < nf; ++i) out[i] = e[i];
@@ -299,7 +299,7 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     f.setAttribute(g, "highest_modes_energy_share", highestModesEnergyShare(r.peak_modal_energy[k]));
     if (k < r.peak_fixed_interface_energy.size() && r.peak_fixed_interface_energy[k].size()) {
       f.writeVector(g + "/fixed_interface_energy_peak", r.peak_fixed_interface_energy[k]);
-      f.writeIntVector(g + "/fixed_interface_modes", r.fixed_interface_modes[k]);
+      f.writeIntVector(g + "/fixed_interface_modes", model.bodies[k].flex->fixed_interface_modes);
     }
   }
   // The envelope of the recovered stresses over every output row (stress_envelope.h).

@@ -33,13 +33,10 @@ void RunSummary::observe(const Model& m, const Sample& s) {
   if (peak_modal_energy.size() != s.bodies.size()) {
     peak_modal_energy.assign(s.bodies.size(), Eigen::VectorXd());
     peak_fixed_interface_energy.assign(s.bodies.size(), Eigen::VectorXd());
-    fixed_interface_modes.assign(s.bodies.size(), {});
     for (std::size_t k = 0; k < s.bodies.size(); ++k) {
       peak_modal_energy[k] = Eigen::VectorXd::Zero(m.bodies[k].flex ? m.bodies[k].modes : 0);
-      if (m.bodies[k].flex && m.bodies[k].flex->fixed_interface_coordinates.size()) {
+      if (m.bodies[k].flex && m.bodies[k].flex->fixed_interface_coordinates.size())
         peak_fixed_interface_energy[k] = Eigen::VectorXd::Zero(m.bodies[k].flex->fixed_interface_eigenvalues.size());
-        fixed_interface_modes[k] = m.bodies[k].flex->fixed_interface_modes;
-      }
     }
   }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {

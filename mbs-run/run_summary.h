@@ -48,7 +48,6 @@ struct RunSummary {
   // mode's strain energy lambda_j eta_j^2 / 2, eta = F^T q (flexible_body.h);
   // empty for other bodies. The ranking fe-prep's modes: {keep: [...]} needs.
   std::vector<Eigen::VectorXd> peak_fixed_interface_energy;
-  std::vector<std::vector<long>> fixed_interface_modes;  // their 1-based numbers, per body
   // Largest failure index over the bodies with stress recovery, their
   // elements (0-based, rows of /mesh/centroids), plies (0-based, bottom up)
   // and output rows; found = false when no body has one.
