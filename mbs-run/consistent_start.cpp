@@ -1,7 +1,6 @@
 #include "mbs-run/consistent_start.h"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -23,15 +22,6 @@ void requireSatisfiable(System& sys, double t, const Eigen::VectorXd& y, double 
 }
 
 namespace {
-
-// The body's size as the scene's check of initial modal coordinates takes
-// it (mbs-run/scene.cpp): its radius of gyration or its farthest interface
-// from the centre of mass.
-double bodySize(const Body& b) {
-  double size = std::sqrt(std::max(b.inertia_com.trace(), 0.0) / b.mass);
-  for (const FlexInterface& it : b.flex->interfaces) size = std::max(size, (it.position - b.com).norm());
-  return size;
-}
 
 // The active joint of `body` (any when body < 0) whose points are farthest
 // apart as placed, among the joints that make two points coincide; joint -1
@@ -63,11 +53,10 @@ void refuseDeformingStart(System& sys, const Eigen::VectorXd& placed, const Eige
     const Body& b = m.bodies[k];
     if (b.fixed || b.modes == 0) continue;
     const Eigen::VectorXd dq = y.segment(b.pos_index + 7, b.modes) - placed.segment(b.pos_index + 7, b.modes);
-    const double limit = kAssemblyDeflection * bodySize(b);
+    const double limit = kAssemblyDeflection * flexibleBodySize(*b.flex, b.mass, b.inertia_com, b.com);
     for (const FlexInterface& it : b.flex->interfaces) {
       if (it.shapes.rows() != b.modes) continue;
-      const double u = (it.shapes.leftCols(3).transpose() * dq).norm();
-      const double th = (it.shapes.rightCols(3).transpose() * dq).norm();
+      const auto [u, th] = interfaceMotion(it, dq);
       if (u <= limit && th <= kAssemblyDeflection) continue;
       const PlacedGap g = largestPlacedGap(sys, placed, int(k));
       std::ostringstream s;

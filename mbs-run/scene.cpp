@@ -122,12 +122,10 @@ void checkInitialModalState(const Body& body, const InputNode& b) {
   const FlexibleBodyData& f = *body.flex;
   const Eigen::VectorXd& q = body.modal_coordinates;
   const Eigen::VectorXd& qd = body.modal_velocities;
-  double size = std::sqrt(std::max(body.inertia_com.trace(), 0.0) / body.mass);
-  for (const FlexInterface& it : f.interfaces) size = std::max(size, (it.position - body.com).norm());
+  const double size = flexibleBodySize(f, body.mass, body.inertia_com, body.com);
   for (const FlexInterface& it : f.interfaces) {
     if (it.shapes.rows() != q.size()) continue;
-    const double u = (it.shapes.leftCols(3).transpose() * q).norm();
-    const double th = (it.shapes.rightCols(3).transpose() * q).norm();
+    const auto [u, th] = interfaceMotion(it, q);
     if (!(u <= 10.0 * size) || !(th <= 10.0)) {
       std::ostringstream os;
       os << "these modal coordinates deflect interface " << it.name << " by " << u << " m and turn it by " << th
@@ -136,7 +134,7 @@ void checkInitialModalState(const Body& body, const InputNode& b) {
             "mass-normalised mode)";
       b["modal_coordinates"].fail(os.str());
     }
-    const double v = (it.shapes.leftCols(3).transpose() * qd).norm();
+    const double v = interfaceMotion(it, qd).displacement;
     if (!(v <= kMaxSpeed)) {
       std::ostringstream os;
       os << "these modal rates move interface " << it.name << " at " << v << " m/s, beyond " << kMaxSpeed << " m/s";

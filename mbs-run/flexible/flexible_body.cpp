@@ -1,5 +1,7 @@
 #include "mbs-run/flexible/flexible_body.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/files.h"
@@ -28,6 +30,17 @@ Marker FlexibleBodyData::marker(const std::string& interface, const Eigen::Matri
                             (known.empty() ? "none" : known) + ")");
   }
   return markerFromInterface(*it, modes, axes);
+}
+
+double flexibleBodySize(const FlexibleBodyData& f, double mass, const Eigen::Matrix3d& inertia_com,
+                        const Eigen::Vector3d& com) {
+  double size = std::sqrt(std::max(inertia_com.trace(), 0.0) / mass);
+  for (const FlexInterface& it : f.interfaces) size = std::max(size, (it.position - com).norm());
+  return size;
+}
+
+InterfaceMotion interfaceMotion(const FlexInterface& it, const Eigen::VectorXd& q) {
+  return {(it.shapes.leftCols(3).transpose() * q).norm(), (it.shapes.rightCols(3).transpose() * q).norm()};
 }
 
 Eigen::VectorXd fixedInterfaceStrainEnergies(const FlexibleBodyData& b, const Eigen::VectorXd& q) {

@@ -50,6 +50,17 @@ struct FlexibleBodyData {
                 const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity()) const;
 };
 
+// A flexible body's size, against which its interfaces' deflections are
+// judged (initial modal state, assembled start): its radius of gyration about
+// the centre of mass, or its farthest interface from it if that is larger.
+double flexibleBodySize(const FlexibleBodyData& f, double mass, const Eigen::Matrix3d& inertia_com,
+                        const Eigen::Vector3d& com);
+// How far modal state q moves interface `it`: |Phi_u^T q| [m] and |Phi_theta^T q| [rad].
+struct InterfaceMotion {
+  double displacement = 0.0, rotation = 0.0;
+};
+InterfaceMotion interfaceMotion(const FlexInterface& it, const Eigen::VectorXd& q);
+
 // Each fixed-interface mode's strain energy lambda_j eta_j^2 / 2, eta = F^T q,
 // at modal state q (empty for bodies without fixed_interface_coordinates).
 // Exact: a Craig-Bampton reduced stiffness is block diagonal, the constraint
