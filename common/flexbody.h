@@ -18,8 +18,8 @@
 // Every term of the mass matrix and of the quadratic velocity vector is a
 // polynomial in w whose coefficients are the sums below; mbs-run loops over the
 // nodes only for the terms quadratic in w of a body with more modes than nodal
-// rows, where that is cheaper (mbs-run/flexible/nodal_inertia.h). The kernel
-// that uses them: mbs-run/flexible/flexible_inertia.h.
+// rows, where that is cheaper (mbs-run/mechanics/flexible/nodal_inertia.h). The kernel
+// that uses them: mbs-run/mechanics/flexible/flexible_inertia.h.
 #include <Eigen/Dense>
 #include <array>
 #include <map>

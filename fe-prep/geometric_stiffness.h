@@ -15,7 +15,7 @@
 // force N_e = axial end force of K_e u_e; shells: the membrane resultants
 // [N_xx N_yy N_xy] of every triangle), and projects the element geometric
 // stiffness of that stress state on the modes: K_c = Phi^T K_G(sigma_c) Phi.
-// mbs-run adds sum_c p_c(t) K_c to the modal stiffness (mbs-run/flexible/
+// mbs-run adds sum_c p_c(t) K_c to the modal stiffness (mbs-run/mechanics/flexible/
 // geometric_stiffening.h). This is SIMPACK's first-order SID term (Wallrapp,
 // Nonlinear Dyn. 5 (1994) 451: the geometric stiffness of unit inertia loads)
 // and MBDyn's modal stress-stiffening per load case.

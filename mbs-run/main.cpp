@@ -9,12 +9,12 @@
 #include "common/files.h"
 #include "common/termination.h"
 #include "common/version.h"
-#include "mbs-run/animation.h"
-#include "mbs-run/constraints.h"
-#include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/results.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/output/animation.h"
+#include "mbs-run/mechanics/constraints.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/output/results.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include <unistd.h>
 
 #include "common/rotations.h"
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/flexible/geometric_stiffening.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/mechanics/flexible/geometric_stiffening.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

@@ -22,10 +22,10 @@
 #include "common/rotations.h"
 #include "../../tests/mbs-run/helpers.h"
 #include "chain_scene.h"
-#include "mbs-run/integrator.h"
-#include "mbs-run/kinematic_tree.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/integrators/integrator.h"
+#include "mbs-run/tree/kinematic_tree.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace {
 

@@ -11,8 +11,8 @@
 
 #include <cmath>
 
-#include "mbs-run/contact_tree.h"
-#include "mbs-run/distance.h"
+#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/distance.h"
 
 namespace {
 

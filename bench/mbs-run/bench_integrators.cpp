@@ -23,10 +23,10 @@
 
 #include "../../tests/mbs-run/beam_body.h"
 #include "../../tests/mbs-run/flexible/random_body.h"
-#include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace {
 

@@ -16,9 +16,9 @@
 
 #include "common/input.h"
 #include "chain_scene.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 #include "rhs_benchmark.h"
 
 namespace {

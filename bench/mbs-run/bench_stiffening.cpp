@@ -16,8 +16,8 @@
 #include <string>
 
 #include "common/input.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/system.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/constrained/system.h"
 #include "rhs_benchmark.h"
 #include "tests/mbs-run/flexible/random_body.h"
 

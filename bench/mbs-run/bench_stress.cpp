@@ -14,10 +14,10 @@
 #include <string>
 
 #include "common/input.h"
-#include "mbs-run/results.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/stress_recovery.h"
+#include "mbs-run/output/results.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/monitors/stress_recovery.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

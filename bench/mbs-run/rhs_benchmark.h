@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "mbs-run/system.h"
+#include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::bench {
 

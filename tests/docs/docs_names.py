@@ -7,7 +7,7 @@ Checked, in every docs/*.md and the README:
   (`analyzeSection`), qualified names (`AtomicH5Writer::commit`), calls (`foo()`);
   each must occur as a word in the sources (common, section-prep, fe-prep, mbs-run,
   tools, tests, bench, examples).
-- Source paths in backticks (`fe-prep/xdmf_writer.cpp`, `mbs-run/joint_limits.h`):
+- Source paths in backticks (`fe-prep/xdmf_writer.cpp`, `mbs-run/run/joint_limits.h`):
   each must exist in the repository.
 usage: docs_names.py SOURCE_DIR
 """

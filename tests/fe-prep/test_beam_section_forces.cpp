@@ -2,7 +2,7 @@
 // ground under a static tip force in mbs-run, settled by heavy modal damping.
 // Reference nobody here wrote: statics, M(x) = P (L - x), V = P, N = T = 0,
 // and the clamp's reaction moment P L. Recovered by the mode-displacement
-// method (mbs-run/flexible/section_forces.h) from fe-prep's per-mode midpoint
+// method (mbs-run/mechanics/flexible/section_forces.h) from fe-prep's per-mode midpoint
 // resultants: with clamped-root modes it converges as modes are added (the
 // table printed), and with every mode of the model, or with a Craig-Bampton
 // body whose boundary includes the loaded tip, it is the finite element
@@ -18,9 +18,9 @@
 #include "common/input.h"
 #include "fe-prep/elements/beam_element.h"
 #include "feprep_test_support.h"
-#include "mbs-run/flexible/section_forces.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/section_forces.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::feprep::test {
 namespace {

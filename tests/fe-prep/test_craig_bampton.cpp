@@ -18,9 +18,9 @@
 #include "common/input.h"
 #include "common/rotations.h"
 #include "feprep_test_support.h"
-#include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::feprep::test {
 namespace {

@@ -13,8 +13,8 @@
 #include "common/flexbody.h"
 #include "common/input.h"
 #include "feprep_test_support.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::feprep::test {
 namespace {

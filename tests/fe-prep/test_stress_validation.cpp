@@ -21,9 +21,9 @@
 #include "common/input.h"
 #include "common/rotations.h"
 #include "feprep_test_support.h"
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/stress_recovery.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/monitors/stress_recovery.h"
 
 namespace fc::feprep::test {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "common/flexbody.h"
 #include "common/input.h"
-#include "mbs-run/scene.h"
+#include "mbs-run/scene/scene.h"
 
 namespace fc::mbs::test {
 

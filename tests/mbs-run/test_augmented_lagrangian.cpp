@@ -8,8 +8,8 @@
 
 #include "beam_body.h"
 #include "common/rotations.h"
-#include "mbs-run/augmented_lagrangian.h"
-#include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/constrained/augmented_lagrangian.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
 
 namespace fc::mbs {
 namespace {

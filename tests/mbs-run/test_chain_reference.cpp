@@ -13,8 +13,8 @@
 
 #include "chain_reference.h"
 #include "helpers.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -1,4 +1,4 @@
-// The consistent start (mbs-run/consistent_start.h, System::assemble) on
+// The consistent start (mbs-run/constrained/consistent_start.h, System::assemble) on
 // scenes whose initial positions do not satisfy their joints (issue 16):
 // - a flexible beam placed 1 mm or 0.5 m away from the revolute that holds
 //   it is assembled by its frame: its modal coordinates and rates stay as
@@ -19,9 +19,9 @@
 #include "beam_body.h"
 #include "common/rotations.h"
 #include "helpers.h"
-#include "mbs-run/consistent_start.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/constrained/consistent_start.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "common/rotations.h"
-#include "mbs-run/constraints.h"
+#include "mbs-run/mechanics/constraints.h"
 
 namespace fc::mbs {
 namespace {

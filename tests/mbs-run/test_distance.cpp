@@ -17,9 +17,9 @@
 
 #include "beam_body.h"
 #include "helpers.h"
-#include "mbs-run/contact_tree.h"
-#include "mbs-run/distance.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/distance.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

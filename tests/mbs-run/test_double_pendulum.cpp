@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -20,9 +20,9 @@
 #include "common/rotations.h"
 #include "flexible/random_body.h"
 #include "helpers.h"
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/run_quality.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/run/run_quality.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -17,8 +17,8 @@
 #include "common/flexbody.h"
 #include "common/rotations.h"
 #include "helpers.h"
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -24,7 +24,7 @@
 #include "common/flexbody.h"
 #include "flexible/random_body.h"
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

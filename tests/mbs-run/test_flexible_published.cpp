@@ -73,7 +73,7 @@
 #include <filesystem>
 
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

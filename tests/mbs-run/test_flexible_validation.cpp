@@ -22,10 +22,10 @@
 #include "beam_body.h"
 #include "helpers.h"
 #include "common/h5io.h"
-#include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/model.h"
-#include "mbs-run/results.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/model/model.h"
+#include "mbs-run/output/results.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -21,7 +21,7 @@
 
 #include "../fe-prep/feprep_test_support.h"
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 #include "rotating_beam_reference.h"
 
 namespace fc::mbs::test {

@@ -14,7 +14,7 @@
 
 #include "common/rotations.h"
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -8,9 +8,9 @@
 
 #include "beam_body.h"
 #include "helpers.h"
-#include "mbs-run/integrator.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/integrators/integrator.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
 namespace {

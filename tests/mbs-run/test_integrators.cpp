@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "mbs-run/integrator.h"
+#include "mbs-run/integrators/integrator.h"
 
 namespace fc::mbs {
 namespace {

@@ -36,9 +36,9 @@
 #include "common/input.h"
 #include "common/rotations.h"
 #include "helpers.h"
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/joint_limits.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/run/joint_limits.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

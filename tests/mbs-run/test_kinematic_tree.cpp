@@ -1,4 +1,4 @@
-// Issue 17: the joint-coordinate path (mbs-run/kinematic_tree.h, Featherstone's
+// Issue 17: the joint-coordinate path (mbs-run/tree/kinematic_tree.h, Featherstone's
 // ABA; tree_simulation.h) against references nobody here wrote:
 //  - the planar N-link chain in absolute angles (chain_reference.h, d'Alembert
 //    on the link centres, dense mass matrix): the accelerations to rounding;
@@ -18,9 +18,9 @@
 #include "chain_reference.h"
 #include "common/rotations.h"
 #include "helpers.h"
-#include "mbs-run/kinematic_tree.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/system.h"
+#include "mbs-run/tree/kinematic_tree.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
 namespace {

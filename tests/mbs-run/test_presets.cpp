@@ -11,7 +11,7 @@
 #include <string>
 
 #include "helpers.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

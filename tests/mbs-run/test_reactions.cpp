@@ -10,8 +10,8 @@
 #include "common/flexbody.h"
 #include "flexible/random_body.h"
 #include "helpers.h"
-#include "mbs-run/flexible/flexible_body.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

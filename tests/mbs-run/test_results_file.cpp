@@ -11,8 +11,8 @@
 #include "common/h5io.h"
 #include "common/termination.h"
 #include "helpers.h"
-#include "mbs-run/results.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/output/results.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

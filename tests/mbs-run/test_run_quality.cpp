@@ -1,4 +1,4 @@
-// The run-quality check's energy allowance (mbs-run/run_quality.h) on runs
+// The run-quality check's energy allowance (mbs-run/run/run_quality.h) on runs
 // whose answer is right but whose energy terms are still small against the
 // energy's sensitivity to the state: a long rod chain just released (issue 17:
 // N = 1 000 at rtol 1e-9 was flagged "inaccurate" with 1.3e-8 J against an
@@ -16,9 +16,9 @@
 #include "beam_body.h"
 #include "chain_reference.h"
 #include "helpers.h"
-#include "mbs-run/run_quality.h"
-#include "mbs-run/run_summary.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/run/run_quality.h"
+#include "mbs-run/run/run_summary.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -18,8 +18,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mbs-run/scene.h"
-#include "mbs-run/simulation.h"
+#include "mbs-run/scene/scene.h"
+#include "mbs-run/run/simulation.h"
 
 namespace fc::mbs {
 namespace {

@@ -1,4 +1,4 @@
-// Stress recovery kernels (mbs-run/stress_recovery.h) against hand values and
+// Stress recovery kernels (mbs-run/monitors/stress_recovery.h) against hand values and
 // independent transformations, the `strength` key, the body-file data round
 // trip and the scene's outputs.stresses errors. The whole chain against
 // classical lamination theory and CalculiX: tests/fe-prep/test_stress_validation.cpp.
@@ -15,10 +15,10 @@
 #include "common/materials.h"
 #include "flexible/random_body.h"
 #include "helpers.h"
-#include "mbs-run/animation.h"
-#include "mbs-run/results.h"
-#include "mbs-run/simulation.h"
-#include "mbs-run/stress_recovery.h"
+#include "mbs-run/output/animation.h"
+#include "mbs-run/output/results.h"
+#include "mbs-run/run/simulation.h"
+#include "mbs-run/monitors/stress_recovery.h"
 
 namespace fc::mbs::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "mbs-run/flexible/flexible_body.h"
+#include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

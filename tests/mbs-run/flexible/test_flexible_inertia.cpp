@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/rotations.h"
-#include "mbs-run/flexible/flexible_inertia.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "common/rotations.h"
-#include "mbs-run/flexible/marker.h"
+#include "mbs-run/mechanics/flexible/marker.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/rotations.h"
-#include "mbs-run/flexible/modal.h"
+#include "mbs-run/mechanics/flexible/modal.h"
 #include "tests/mbs-run/flexible/random_body.h"
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "mbs-run/flexible/flexible_inertia.h"
-#include "mbs-run/flexible/modal.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
+#include "mbs-run/mechanics/flexible/modal.h"
 
 namespace {
 

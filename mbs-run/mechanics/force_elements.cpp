@@ -1,0 +1,181 @@
+#include "mbs-run/mechanics/force_elements.h"
+
+#include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/mechanics/flexible/modal.h"
+
+namespace fc::mbs {
+
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+namespace {
+
+struct Context {
+  const Model& model;
+  const std::vector<BodyPose>& P;
+  const std::vector<JointRuntime>& joints;
+  bool forces;     // Q and the powers
+  bool potential;  // potential energy
+};
+
+// Generalised forces J^T f of a global force at a point and J_w^T n of a
+// global torque, J = [I, -A s~, A Psi], J_w = [0, A, A Theta].
+void addForceAt(const Context& c, int body, const Vector3d& s0, const PointShapes& sh, const Vector3d& f,
+                VectorXd& Q) {
+  const Body& b = c.model.bodies[body];
+  if (b.fixed) return;
+  Q.segment(b.dof_index, b.nv()) += attachedPoint(c.P[body], s0, sh.psi).J.transpose() * f;
+}
+
+void addTorque(const Context& c, int body, const PointShapes& sh, const Vector3d& n, VectorXd& Q) {
+  const Body& b = c.model.bodies[body];
+  if (b.fixed) return;
+  const Vector3d nb = c.P[body].A.transpose() * n;
+  Q.segment<3>(b.dof_index + 3) += nb;
+  if (b.modes > 0 && sh.theta.cols() == b.modes) Q.segment(b.dof_index + 6, b.modes) += sh.theta.transpose() * nb;
+}
+
+// The velocity coordinates [rdot, omega', wdot] of a pose (zero for fixed bodies).
+VectorXd velocityOf(const BodyPose& b) {
+  VectorXd v(b.nv());
+  v << b.rdot, b.w, b.modal_rate;
+  return v;
+}
+
+// Uniform gravity g on every free body: V = -m g . x_com (rigid), the
+// flexible body's -g . (m r + A S(w)) (mbs-run/mechanics/flexible/modal.h).
+void gravity(const Context& c, const ForceElement& fe, ForceSums& s) {
+  const PointShapes frame_only;
+  for (std::size_t k = 0; k < c.model.bodies.size(); ++k) {
+    const Body& b = c.model.bodies[k];
+    if (b.fixed) continue;
+    const BodyPose& P = c.P[k];
+    if (c.forces) {
+      if (b.flex)
+        s.Q.segment(b.dof_index, b.nv()) += gravityForces(b.flex->inertia, P.A, P.modal, fe.vector);
+      else
+        addForceAt(c, static_cast<int>(k), b.com, frame_only, b.mass * fe.vector, s.Q);
+    }
+    if (c.potential) {
+      if (b.flex) s.potential += gravityPotential(b.flex->inertia, P.r, P.A, P.modal, fe.vector);
+      else s.potential -= b.mass * fe.vector.dot(P.r + P.A * b.com);
+    }
+  }
+}
+
+// Torque M = f(angle) + c angle_dot about a revolute joint; V = int_0^angle f.
+// Q = -M g^T with g = d(angle)/dv, the exact gradient of the angle the
+// potential is a function of (constraints.h): the spring's power is exactly
+// -dV/dt and the damper's exactly -c angle_dot^2, also with large modal
+// rotations, where a torque M n through J_w = [0, A, A Theta] matched the
+// angle only to first order in them. On rigid bodies with the joint assembled
+// g^T is [0, -A_i^T n] and [0, A_j^T n]: the torques M n on i and -M n on j.
+void rotationalSpringDamper(const Context& c, const ForceElement& fe, ForceSums& s) {
+  const Joint& jt = c.model.joints[fe.joint];
+  const BodyPose &bi = c.P[jt.body_i], &bj = c.P[jt.body_j];
+  const double th = revoluteAngle(jt, c.joints[fe.joint], bi, bj);
+  if (c.forces) {
+    Eigen::RowVectorXd gi, gj;
+    revoluteAngleJacobian(jt, bi, bj, gi, gj);
+    const double thd = gi.dot(velocityOf(bi)) + gj.dot(velocityOf(bj));
+    const double M = fe.torque.value(th) + fe.damping * thd;
+    const Body &body_i = c.model.bodies[jt.body_i], &body_j = c.model.bodies[jt.body_j];
+    if (!body_i.fixed) s.Q.segment(body_i.dof_index, body_i.nv()) -= M * gi.transpose();
+    if (!body_j.fixed) s.Q.segment(body_j.dof_index, body_j.nv()) -= M * gj.transpose();
+    s.dissipation += fe.damping * thd * thd;
+  }
+  if (c.potential) s.potential += fe.torque.integral(th);
+}
+
+// Force F = k (L - L0) + c L_dot along the line between two points, pulling
+// them together when stretched; V = k (L - L0)^2 / 2.
+struct SpringState {
+  double L = 0.0, Ld = 0.0, F = 0.0;
+  Vector3d e = Vector3d::Zero();  // from point i to point j
+};
+
+SpringState springState(const std::vector<BodyPose>& P, const ForceElement& fe) {
+  const Attached ai = attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi);
+  const Attached aj = attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi);
+  const Vector3d d = aj.x - ai.x;
+  SpringState s;
+  s.L = d.norm();
+  // At L = 0 the direction is undefined; the force is continuous only for L > 0.
+  if (s.L > 0.0) {
+    s.e = d / s.L;
+    s.Ld = s.e.dot(aj.xdot - ai.xdot);
+    s.F = fe.stiffness * (s.L - fe.free_length) + fe.damping * s.Ld;
+  }
+  return s;
+}
+
+void translationalSpringDamper(const Context& c, const ForceElement& fe, ForceSums& s) {
+  const SpringState sp = springState(c.P, fe);
+  if (c.forces && sp.L > 0.0) {
+    addForceAt(c, fe.body_i, fe.point_i, fe.shapes_i, sp.F * sp.e, s.Q);
+    addForceAt(c, fe.body_j, fe.point_j, fe.shapes_j, -sp.F * sp.e, s.Q);
+    s.dissipation += fe.damping * sp.Ld * sp.Ld;
+  }
+  if (c.potential) {
+    const double stretch = sp.L - fe.free_length;
+    s.potential += 0.5 * fe.stiffness * stretch * stretch;
+  }
+}
+
+// Constant global force at a body point: V = -f . x.
+void constantForce(const Context& c, const ForceElement& fe, ForceSums& s) {
+  if (c.forces) addForceAt(c, fe.body_i, fe.point_i, fe.shapes_i, fe.vector, s.Q);
+  if (c.potential && !c.model.bodies[fe.body_i].fixed)
+    s.potential -= fe.vector.dot(attachedPoint(c.P[fe.body_i], fe.point_i, fe.shapes_i.psi).x);
+}
+
+// Constant global torque on a body frame: not conservative for a body free to
+// turn in 3-D, so no potential; its power n . omega is integrated instead.
+void constantTorque(const Context& c, const ForceElement& fe, ForceSums& s) {
+  if (!c.forces) return;
+  const PointShapes frame_only;
+  addTorque(c, fe.body_i, frame_only, fe.vector, s.Q);
+  s.applied_power += fe.vector.dot(c.P[fe.body_i].A * c.P[fe.body_i].w);
+}
+
+}  // namespace
+
+void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums) {
+  const Context c{model, P, joints, what == ForceQuantity::ForcesAndPowers, what == ForceQuantity::Potential};
+  switch (fe.type) {
+    case ForceType::Gravity: gravity(c, fe, sums); break;
+    case ForceType::RotationalSpringDamper: rotationalSpringDamper(c, fe, sums); break;
+    case ForceType::TranslationalSpringDamper: translationalSpringDamper(c, fe, sums); break;
+    case ForceType::ConstantForce: constantForce(c, fe, sums); break;
+    case ForceType::ConstantTorque: constantTorque(c, fe, sums); break;
+  }
+}
+
+void interfaceForces(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     std::vector<InterfaceForce>& out) {
+  (void)model;
+  if (fe.type == ForceType::TranslationalSpringDamper && (!fe.interface_i.empty() || !fe.interface_j.empty())) {
+    const SpringState sp = springState(P, fe);
+    if (sp.L <= 0.0) return;
+    if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, sp.F * sp.e});
+    if (!fe.interface_j.empty()) out.push_back({fe.body_j, &fe.interface_j, -sp.F * sp.e});
+  } else if (fe.type == ForceType::ConstantForce && !fe.interface_i.empty()) {
+    out.push_back({fe.body_i, &fe.interface_i, fe.vector});
+  }
+}
+
+std::string forceElementLabel(const Model& model, int index) {
+  const ForceElement& fe = model.forces[index];
+  const char* type = "";
+  switch (fe.type) {
+    case ForceType::Gravity: type = "gravity"; break;
+    case ForceType::RotationalSpringDamper: type = "rotational_spring_damper"; break;
+    case ForceType::TranslationalSpringDamper: type = "translational_spring_damper"; break;
+    case ForceType::ConstantForce: type = "force"; break;
+    case ForceType::ConstantTorque: type = "torque"; break;
+  }
+  return (fe.name.empty() ? "#" + std::to_string(index + 1) : fe.name) + " (" + type + ")";
+}
+
+}  // namespace fc::mbs

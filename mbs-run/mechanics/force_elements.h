@@ -1,0 +1,55 @@
+#pragma once
+// Force elements (contracts.md `forces:`): gravity, rotational and
+// translational spring-dampers, constant forces and torques. Each type is
+// defined once, in one function giving its generalised forces, the powers the
+// energy balance integrates (dampers, non-conservative loads) and its
+// potential energy, so that force and potential cannot drift apart.
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+#include "mbs-run/mechanics/constraints.h"
+#include "mbs-run/mechanics/kinematics.h"
+#include "mbs-run/model/model.h"
+
+namespace fc::mbs {
+
+// Sums over the force elements, accumulated in element order.
+struct ForceSums {
+  Eigen::VectorXd Q;           // generalised forces on the velocity coordinates (nv)
+  double dissipation = 0.0;    // power dissipated by dampers (>= 0)
+  double applied_power = 0.0;  // power of non-conservative loads (constant torques)
+  double potential = 0.0;      // potential energy of the conservative parts
+};
+
+// What to evaluate: the rates the derivative needs (Q and the powers), or the
+// potential energy only (energy reports).
+enum class ForceQuantity { ForcesAndPowers, Potential };
+
+// Adds the contribution of element `fe` at poses P (joint runtimes for the
+// revolute angle of rotational springs) to `sums`; sums.Q must have size nv
+// when forces are asked for.
+void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums);
+
+// A force a point element exerts on a body at one of its interfaces (global
+// axes): what stiffens that body (flexible/geometric_stiffening.h).
+struct InterfaceForce {
+  int body = -1;
+  const std::string* interface = nullptr;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+};
+
+// The forces element `fe` applies at named interfaces at poses P: a
+// translational spring-damper's F e and -F e at its two points, a constant
+// force at its point; none for gravity (an inertial case of its own) and the
+// torques (a pure moment at a point: not among the stiffening loads). Appends
+// to `out`.
+void interfaceForces(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                     std::vector<InterfaceForce>& out);
+
+// "NAME (type)", or "#k (type)" for an unnamed element, for messages.
+std::string forceElementLabel(const Model& model, int index);
+
+}  // namespace fc::mbs

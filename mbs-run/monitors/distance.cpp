@@ -1,0 +1,160 @@
+#include "mbs-run/monitors/distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fc::mbs {
+
+using Eigen::Vector3d;
+
+double segmentSegmentDistance(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2, const Vector3d& q2) {
+  // Ericson 5.1.9: s, t in [0, 1] minimising |p1 + s d1 - p2 - t d2|.
+  const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double eps = 1e-30;
+  double s = 0, t = 0;
+  if (a <= eps && e <= eps) return r.norm();
+  if (a <= eps) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= eps) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p1 + s * d1) - (p2 + t * d2)).norm();
+}
+
+Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  // Ericson 5.1.5: Voronoi regions of the vertices, edges and face.
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double segmentTriangleDistance(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b,
+                               const Vector3d& c) {
+  // Crossing: the segment's ends on opposite sides of the plane and the
+  // crossing point inside the triangle (barycentric signs).
+  const Vector3d n = (b - a).cross(c - a);
+  const double sp = n.dot(p - a), sq = n.dot(q - a);
+  if ((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) {
+    if (sp != sq) {
+      const Vector3d x = p + (sp / (sp - sq)) * (q - p);
+      const double u = n.dot((b - a).cross(x - a)), v = n.dot((c - b).cross(x - b)), w = n.dot((a - c).cross(x - c));
+      if ((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0)) return 0.0;
+    }
+  }
+  // Otherwise the closest points lie on the segment's ends or on an edge.
+  double d = std::min((p - closestPointOnTriangle(p, a, b, c)).norm(), (q - closestPointOnTriangle(q, a, b, c)).norm());
+  d = std::min(d, segmentSegmentDistance(p, q, a, b));
+  d = std::min(d, segmentSegmentDistance(p, q, b, c));
+  d = std::min(d, segmentSegmentDistance(p, q, c, a));
+  return d;
+}
+
+Vector3d deformedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::VectorXd& w) {
+  Vector3d x = g.vertices.col(k);
+  if (g.modal_displacement.size() && w.size() == g.modal_displacement.cols())
+    for (Eigen::Index j = 0; j < w.size(); ++j) x += g.modal_displacement.block<3, 1>(3 * k, j) * w[j];
+  return x;
+}
+
+Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Vector3d& r, const Eigen::Matrix3d& A,
+                      const Eigen::VectorXd& w) {
+  return A * deformedVertex(g, k, w) + r;
+}
+
+Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Vector3d& r, const Eigen::Matrix3d& A,
+                                const Eigen::VectorXd& w) {
+  Eigen::Matrix3Xd v(3, g.vertices.cols());
+  for (Eigen::Index k = 0; k < v.cols(); ++k) v.col(k) = placedVertex(g, k, r, A, w);
+  return v;
+}
+
+double geometryDistance(const BodyGeometry& ga, const Eigen::Matrix3Xd& va, const BodyGeometry& gb,
+                        const Eigen::Matrix3Xd& vb) {
+  double d = std::numeric_limits<double>::infinity();
+  auto V = [](const Eigen::Matrix3Xd& v, int k) -> Vector3d { return v.col(k); };
+  // Primitive lists; a geometry with neither segments nor triangles is its points.
+  auto pointsOnly = [](const BodyGeometry& g) { return g.segments.empty() && g.triangles.empty(); };
+  auto segOf = [&](const BodyGeometry& g, const Eigen::Matrix3Xd& v, std::vector<std::pair<Vector3d, Vector3d>>& out) {
+    for (const auto& s : g.segments) out.emplace_back(V(v, s[0]), V(v, s[1]));
+    if (pointsOnly(g))
+      for (Eigen::Index k = 0; k < v.cols(); ++k) out.emplace_back(v.col(k), v.col(k));
+  };
+  std::vector<std::pair<Vector3d, Vector3d>> sa, sb;
+  segOf(ga, va, sa);
+  segOf(gb, vb, sb);
+  for (const auto& x : sa)
+    for (const auto& y : sb) d = std::min(d, segmentSegmentDistance(x.first, x.second, y.first, y.second));
+  // Segments (and points) of one against the triangles of the other; the
+  // triangles' edges as segments against the other's triangles (two
+  // triangles' distance is attained on an edge of one of them).
+  auto edgesOf = [&](const BodyGeometry& g, const Eigen::Matrix3Xd& v, std::vector<std::pair<Vector3d, Vector3d>>& out) {
+    for (const auto& t : g.triangles)
+      for (int e = 0; e < 3; ++e) out.emplace_back(V(v, t[e]), V(v, t[(e + 1) % 3]));
+  };
+  auto againstTriangles = [&](const std::vector<std::pair<Vector3d, Vector3d>>& segs, const BodyGeometry& g,
+                              const Eigen::Matrix3Xd& v) {
+    for (const auto& t : g.triangles)
+      for (const auto& s : segs)
+        d = std::min(d, segmentTriangleDistance(s.first, s.second, V(v, t[0]), V(v, t[1]), V(v, t[2])));
+  };
+  std::vector<std::pair<Vector3d, Vector3d>> ea = sa, eb = sb;
+  edgesOf(ga, va, ea);
+  edgesOf(gb, vb, eb);
+  againstTriangles(ea, gb, vb);
+  againstTriangles(eb, ga, va);
+  return d;
+}
+
+BodyGeometry rodGeometry(double length) {
+  BodyGeometry g;
+  g.vertices.resize(3, 2);
+  g.vertices.col(0) = Vector3d(-0.5 * length, 0, 0);
+  g.vertices.col(1) = Vector3d(0.5 * length, 0, 0);
+  g.segments.push_back({0, 1});
+  return g;
+}
+
+BodyGeometry rectangleGeometry(double length, double width) {
+  BodyGeometry g;
+  g.vertices.resize(3, 4);
+  const double a = 0.5 * length, b = 0.5 * width;
+  g.vertices.col(0) = Vector3d(-a, -b, 0);
+  g.vertices.col(1) = Vector3d(a, -b, 0);
+  g.vertices.col(2) = Vector3d(a, b, 0);
+  g.vertices.col(3) = Vector3d(-a, b, 0);
+  g.triangles.push_back({0, 1, 2});
+  g.triangles.push_back({0, 2, 3});
+  return g;
+}
+
+}  // namespace fc::mbs

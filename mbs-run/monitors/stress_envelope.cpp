@@ -1,0 +1,50 @@
+#include "mbs-run/monitors/stress_envelope.h"
+
+namespace fc::mbs {
+
+void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eigen::VectorXd>& fields, double t) {
+  if (fields.size() != r.outputs.size() || fields.empty()) return;
+  const Eigen::VectorXd& f0 = fields[0];  // ply_stress or section_forces
+  if (r.failure_output >= 0) {
+    const Eigen::VectorXd& fi = fields[static_cast<std::size_t>(r.failure_output)];
+    if (rows_ == 0) {
+      peak_ = fi;
+      peak_time_ = Eigen::VectorXd::Constant(fi.size(), t);
+      at_peak_ = f0;
+    } else {
+      // Strictly larger only: the time is the FIRST row that reaches the peak,
+      // as for the summary's largest index (RunSummary::observe).
+      for (Eigen::Index i = 0; i < fi.size(); ++i)
+        if (fi[i] > peak_[i]) {
+          peak_[i] = fi[i];
+          peak_time_[i] = t;
+          at_peak_.segment<3>(3 * i) = f0.segment<3>(3 * i);
+        }
+    }
+  } else if (rows_ == 0) {
+    max_ = min_ = f0;
+  } else {
+    max_ = max_.cwiseMax(f0);
+    min_ = min_.cwiseMin(f0);
+  }
+  ++rows_;
+}
+
+std::vector<EnvelopeDataset> StressEnvelope::datasets(const BodyStressRecovery& r) const {
+  std::vector<EnvelopeDataset> d;
+  if (rows_ == 0) return d;
+  const std::vector<long>& field = r.outputs[0].dims;  // (n_el, n_plies, 3) or (n_el, 6)
+  const std::string base = r.outputs[0].name;          // ply_stress or section_forces
+  if (r.failure_output >= 0) {
+    const std::vector<long>& fi = r.outputs[static_cast<std::size_t>(r.failure_output)].dims;
+    d.push_back({"failure_index_peak", fi, peak_});
+    d.push_back({"failure_index_peak_time", fi, peak_time_});
+    d.push_back({base + "_at_peak", field, at_peak_});
+  } else {
+    d.push_back({base + "_max", field, max_});
+    d.push_back({base + "_min", field, min_});
+  }
+  return d;
+}
+
+}  // namespace fc::mbs

@@ -1,0 +1,61 @@
+#pragma once
+// Which integrator runs each segment. A named method (dopri5, trbdf2, imex)
+// runs throughout. With `integrator: auto` a segment between events starts
+// with Dormand-Prince; when a stiff eigenvalue (a fast mode the joints do not
+// clamp, such as the SAR crank's 1 kHz modes once R1 is released) holds the
+// explicit steps at the stability boundary, a trial decides whether the
+// implicit candidate (IMEX for a scene with modes, else TR-BDF2) takes over;
+// an event changes the dynamics, so the next segment starts explicit again.
+#include <Eigen/Dense>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mbs-run/integrators/integrator.h"
+#include "mbs-run/model/model.h"
+
+namespace fc::mbs {
+
+// The error control a scene's settings ask for, over a state of `size`
+// entries whose last two are the energy quadratures (diagnostics, not
+// controlled): rtol, atol (default 1e-3 rtol), max_step (default ten output
+// intervals, so that a joint-angle event cannot hide two crossings inside one
+// long step of a slow motion). Both formulations integrate with it.
+double absoluteTolerance(const Settings& st);
+Tolerances tolerances(const Settings& st, int size);
+
+class IntegratorSwitching {
+ public:
+  // stiff: the modal stiffness part for the IMEX method (System::modalSplit).
+  IntegratorSwitching(const Settings& settings, Rhs f, StiffPart stiff, const Tolerances& tol);
+  Integrator& current() { return *current_; }
+  // The method's name, "dopri5+imex" (or "+trbdf2") once auto has switched.
+  const std::string& label() const { return label_; }
+  // After an event at (t, y): auto goes back to the explicit method, a named
+  // method restarts (its history is invalid).
+  void restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
+  // After an accepted step: when auto's Dormand-Prince is held at its
+  // stability boundary above the stiff frequency, a trial of both methods
+  // (switch_trial.h) decides; it moves to the implicit candidate only if that
+  // is cheaper and as accurate, and otherwise keeps dopri5 until the next
+  // event. True if it switched.
+  bool switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
+  long steps() const;
+  long rejected() const;
+
+ private:
+  const Settings& settings_;
+  Rhs f_;
+  StiffPart stiff_;
+  Tolerances tol_;
+  std::unique_ptr<Integrator> explicit_, implicit_;
+  Integrator* current_ = nullptr;
+  std::string label_;
+  bool declined_ = false;  // a trial kept dopri5 for the rest of this segment
+};
+
+// Length of auto's switch trial in Dormand-Prince steps (switch_trial.h).
+constexpr double kTrialSteps = 300.0;
+
+}  // namespace fc::mbs
