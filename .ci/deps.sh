@@ -7,7 +7,8 @@ PKGS=(cmake g++ make pkg-config
       libeigen3-dev petsc-dev slepc-dev libsuitesparse-dev libhdf5-openmpi-dev openmpi-bin
       libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
       libgtest-dev libgmock-dev libbenchmark-dev
-      hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml)
+      hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml
+      python3-scipy python3-mpi4py)   # flexcomp-study: Sobol' designs (scipy.stats.qmc), --executor mpi (docs/studies.md)
 # --with-paraview (what CI uses, .ci/test.sh): pvpython, so that the test loading
 # BODY.xdmf and the animation in ParaView runs instead of being skipped
 # (python3-paraview pulls in paraview, about 0.5 GB).
