@@ -12,7 +12,16 @@ PKGS=(cmake g++ make pkg-config
 # --with-paraview (what CI uses, .ci/test.sh): pvpython, so that the test loading
 # BODY.xdmf and the animation in ParaView runs instead of being skipped
 # (python3-paraview pulls in paraview, about 0.5 GB).
-if [ "${1:-}" = "--with-paraview" ]; then PKGS+=(python3-paraview); fi
+# --with-slurm: a Slurm controller, node daemon and munge, so that the sampling study's
+# Slurm route runs end to end in tests/examples/check_study_executors.py (it starts a
+# private controller on localhost; without these packages the test runs the array's
+# scripts by hand and says the submission was skipped).
+for arg in "$@"; do
+  case "$arg" in
+    --with-paraview) PKGS+=(python3-paraview) ;;
+    --with-slurm) PKGS+=(slurmctld slurmd slurm-client munge) ;;
+  esac
+done
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -80,6 +80,10 @@ for design in ("lhs", "sobol"):
     check(np.array_equal(u, fs.design_points(design, 16, 3, 7)), f"{design}: same seed, same bits")
     check(not np.array_equal(u, fs.design_points(design, 16, 3, 8)), f"{design}: another seed, other points")
 
+for design in ("random", "sobol"):
+    check(np.array_equal(fs.design_points(design, 8, 3, 5), fs.design_points(design, 16, 3, 5)[:8]),
+          f"{design}: more samples keep the first cases' points (a resumed study only runs the new ones)")
+
 # ---- Spearman
 iq = [106, 100, 86, 101, 99, 103, 97, 113, 112, 110]
 tv = [7, 27, 2, 50, 28, 29, 20, 12, 6, 17]
