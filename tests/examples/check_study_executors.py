@@ -75,6 +75,14 @@ if mpirun:
     run([mpirun, "-n", "2", sys.executable, study, scene, "--out", out, "--executor", "mpi", *samples],
         "mpirun -n 2 flexcomp-study --executor mpi")
     check(table(out) == ref, "plain mpirun -n 2 (MPICommExecutor) gives the serial table")
+    # An input error on rank 0 must release the other ranks, not leave them waiting.
+    try:
+        p = subprocess.run([mpirun, "-n", "2", sys.executable, study, scene, "--out", os.path.join(work, "mpi-bad"),
+                            "--executor", "mpi", "--tools", build, "--sample", "forces.cach.stiffness=normal(1, 1)"],
+                           capture_output=True, text=True, env=env, timeout=120)
+        check(p.returncode != 0 and "did you mean 'catch'" in p.stderr, "a bad path under mpirun: the error, every rank ends")
+    except subprocess.TimeoutExpired:
+        check(False, "a bad path under mpirun: the ranks hung")
 else:
     check(False, "mpirun not found (Debian openmpi-bin)")
 
