@@ -286,5 +286,27 @@ TEST(MatrixImportFitting, AbaqusAndMatrixMarketGiveTheSameBody) {
   }
 }
 
+// CalculiX's static case (fitting_static.inp): pads held, 100 N along x, then
+// along y, at a reference node 5 mm above the lug's top face coupled to it
+// rigidly (*KINEMATIC). fe-prep's body of the same matrices with the same
+// conditions (pads pinned, a rigid patch on LUGTOP) computes the exact static
+// deflection of the interface point per unit load (/interfaces/*/static_compliance).
+TEST(MatrixImportFitting, RigidPatchStaticDeflectionMatchesCalculix) {
+  const std::string dir = test::scratchDir("import_static");
+  const BodySpec spec = fittingSpec(dir, ccxMatrices(),
+                                    "  interfaces:\n    lug: {point: [0, 0, 0.030], coupling: rigid, nodes: {edge: LUGTOP}}\n"
+                                    "  reference: {clamp: [PADS]}\n");
+  BuildOptions opt;
+  opt.quiet = true;
+  const BuildResult r = buildFlexBody(MPI_COMM_WORLD, spec, opt);
+  ASSERT_EQ(r.body.interfaces.size(), 1u);
+  const Eigen::VectorXd& c = r.body.interfaces[0].static_compliance;
+  ASSERT_EQ(c.size(), 6);
+  // fitting_static.dat: U1 = 1.431469E-02 mm under 100 N (step 1), U2 = 3.988351E-03 mm (step 2).
+  // 1e-5: the .dat prints 7 digits (5e-7); both are direct solutions of the same K.
+  EXPECT_NEAR(c(0) / (1.431469e-5 / 100.0), 1.0, 1e-5);
+  EXPECT_NEAR(c(1) / (3.988351e-6 / 100.0), 1.0, 1e-5);
+}
+
 }  // namespace
 }  // namespace fc::feprep
