@@ -150,6 +150,28 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
     if (d.dof > 3) has_rotation[static_cast<std::size_t>(index[d.node])] = 1;
   }
   const long n = static_cast<long>(out.labels.size());
+  // Every node needs its three translations; rotations come all three or none.
+  {
+    std::vector<int> bits(static_cast<std::size_t>(n), 0), first_line(static_cast<std::size_t>(n), 0);
+    for (const NodeDof& d : dofs.dofs) {
+      const auto k = static_cast<std::size_t>(index[d.node]);
+      bits[k] |= 1 << (d.dof - 1);
+      if (!first_line[k]) first_line[k] = d.line;
+    }
+    for (long k = 0; k < n; ++k) {
+      const int b = bits[static_cast<std::size_t>(k)];
+      if ((b & 7) != 7 || ((b & 56) != 0 && (b & 56) != 56))
+        fail(dofs.file, first_line[static_cast<std::size_t>(k)],
+             "node " + std::to_string(out.labels[static_cast<std::size_t>(k)]) +
+                 " lists DOF " + [&] {
+                   std::string t;
+                   for (int d = 0; d < 6; ++d)
+                     if (b & (1 << d)) t += (t.empty() ? "" : ", ") + std::to_string(d + 1);
+                   return t;
+                 }() + ": every node needs translations 1, 2, 3, and rotations 4, 5, 6 all or none "
+                       "(plane or axisymmetric models are not imported)");
+    }
+  }
   const double L = spec.units.length;
   out.mesh.nodes.resize(n, 3);
   for (long k = 0; k < n; ++k) out.mesh.nodes.row(k) = L * table.coordinates.at(out.labels[static_cast<std::size_t>(k)]).transpose();
@@ -189,6 +211,8 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
   out.K = spread(K, e_scale);
   out.M = spread(M, m_scale);
 
+  if (!(rigidMassProjection(out.mesh.nodes, out.M).mass > 0.0))
+    fail(spec.mass, 0, "the mass matrix carries no mass in rigid translation (all zero?)");
   // A free model: its rigid motions must not strain it.
   const Eigen::MatrixXd R = rigidModes(out.mesh.nodes);
   const Eigen::MatrixXd KR = out.K * R;

@@ -274,7 +274,8 @@ StoredMatrix readMatrixMarket(const std::string& path) {
       if (r != c || r <= 0) fail(path, line, "expected a square matrix, got " + f[0] + " x " + f[1]);
       if (declared < 0) fail(path, line, "expected a non-negative entry count");
       m.size = r;
-      m.entries.reserve(static_cast<std::size_t>(declared));
+      // Reserved up to a bound: the count is checked against the entries read, not trusted for memory.
+      m.entries.reserve(static_cast<std::size_t>(std::min<long>(declared, 10000000)));
       continue;
     }
     if (f.size() != 3) fail(path, line, "expected an entry 'row column value'");

@@ -175,6 +175,20 @@ TEST(MatrixImportModel, LocatedRefusals) {
     EXPECT_NE(e.find("indefinite: 1 of its eigenvalues"), std::string::npos) << e;
     EXPECT_NE(e.find("s.mas"), std::string::npos) << e;
   }
+  // A node without its three translations (a plane model).
+  {
+    const Spring s = spring("import_plane", "1 1 1\n1 3 -1\n3 3 1\n2 2 0\n4 4 0\n", "1 1 1\n2 2 1\n3 3 1\n4 4 1\n",
+                            kSpringNodes, "1 1\n1 2\n2 1\n2 2\n");
+    const std::string e = errorOf([&] { importMatrices(specOf(s)); });
+    EXPECT_NE(e.find("s.dof:1"), std::string::npos) << e;
+    EXPECT_NE(e.find("node 1 lists DOF 1, 2: every node needs translations"), std::string::npos) << e;
+  }
+  // No mass at all.
+  {
+    const Spring s = spring("import_massless", kSpringK, "1 1 0\n2 2 0\n3 3 0\n4 4 0\n5 5 0\n6 6 0\n", kSpringNodes);
+    const std::string e = errorOf([&] { importMatrices(specOf(s)); });
+    EXPECT_NE(e.find("carries no mass"), std::string::npos) << e;
+  }
   // A stiffness held to ground (a source model with boundary conditions).
   {
     const Spring s = spring("import_held", "1 1 2\n1 4 -1\n4 4 1\n2 2 0\n3 3 0\n5 5 0\n6 6 0\n", kSpringM, kSpringNodes);
