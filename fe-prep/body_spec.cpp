@@ -188,11 +188,18 @@ BodySpec parseBodySpec(const InputNode& root) {
 
   const InputNode b = root["body"];
   b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction",
-               "geometric_stiffness"});
+               "geometric_stiffness", "matrices", "units"});
   spec.name = b.has("name") ? b["name"].asName() : std::string("body");
-  if (b.has("shell") == b.has("beam")) b.fail("expected exactly one of shell: or beam:");
+  if (int(b.has("shell")) + int(b.has("beam")) + int(b.has("matrices")) != 1)
+    b.fail("expected exactly one of shell:, beam: or matrices:");
   if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
-  else spec.beam = parseBeam(b["beam"], materials, spec);
+  else if (b.has("beam")) spec.beam = parseBeam(b["beam"], materials, spec);
+  else spec.matrices = parseMatricesSpec(b, spec.input_files);
+  if (b.has("units") && !spec.matrices) b["units"].fail("units: applies to imported bodies (matrices:); shells and beams are in SI");
+  if (spec.matrices && b.has("mass"))
+    b["mass"].fail("an imported body uses its mass matrix as given (the nodal masses of /mass/nodal are fitted to it); drop mass:");
+  if (spec.matrices && b.has("geometric_stiffness"))
+    b["geometric_stiffness"].fail("geometric stiffness needs fe-prep's own elements; an imported body has only its matrices");
 
   std::set<std::string> names;
   if (b.has("interfaces")) {
@@ -223,7 +230,7 @@ BodySpec parseBodySpec(const InputNode& root) {
           i.edge = nodes["edge"].asString();
           std::vector<std::string> sets;
           if (spec.beam) sets.assign(std::begin(kEnds), std::end(kEnds));
-          else if (spec.shell->rectangle) sets.assign(std::begin(kEdges), std::end(kEdges));
+          else if (spec.shell && spec.shell->rectangle) sets.assign(std::begin(kEdges), std::end(kEdges));
           if (!sets.empty() && std::find(sets.begin(), sets.end(), i.edge) == sets.end())
             nodes["edge"].fail("unknown edge '" + i.edge + "', expected " +
                                (spec.beam ? "end_min or end_max" : "edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
@@ -265,7 +272,7 @@ BodySpec parseBodySpec(const InputNode& root) {
           const InputNode item = list.at(i);
           const std::string set = item.asString();
           // Geo files define their own sets (physical groups); checked after meshing.
-          const bool open_set = spec.shell && !spec.shell->rectangle;
+          const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.matrices;
           if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
             const std::string near = closestMatch(set, known);
             item.fail("unknown set '" + set + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +

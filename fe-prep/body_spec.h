@@ -12,6 +12,7 @@
 #include "common/laminate.h"
 #include "common/stress_data.h"
 #include "fe-prep/elements/shell_triangle.h"
+#include "fe-prep/import/matrices_spec.h"
 
 namespace fc::feprep {
 
@@ -64,6 +65,7 @@ struct BodySpec {
   std::string name;
   std::optional<ShellSpec> shell;
   std::optional<BeamSpec> beam;
+  std::optional<MatricesSpec> matrices;  // a body from another FE code's matrices (fe-prep/import/)
   std::vector<InterfaceSpec> interfaces;
   std::vector<ReferenceEntry> reference;  // empty: free
   long modes = 0;

@@ -17,6 +17,8 @@
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/craig_bampton.h"
 #include "fe-prep/geometric_stiffness.h"
+#include "fe-prep/import/import_stage.h"
+#include <optional>
 #include "fe-prep/interfaces.h"
 #include "fe-prep/reference_conditions.h"
 #include "fe-prep/residual_flexibility.h"
@@ -224,8 +226,13 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   sw.start();
   Progress pmesh("meshing", 1.0, quiet);
   pmesh.update(0.0);
-  const Mesh mesh = meshBody(comm, spec, quiet);
+  // An imported body (matrices:) reads its model instead of meshing (fe-prep/import/).
+  std::optional<ImportedModel> imported;
+  if (spec.matrices) imported = importStage(comm, spec, quiet);
+  const Mesh mesh = imported ? imported->mesh : meshBody(comm, spec, quiet);
   std::ostringstream mdesc;
+  if (imported) mdesc << "(" << mesh.nodeCount() << " nodes, " << imported->source_dofs << " imported DOF)";
+  else
   mdesc << "(" << mesh.nodeCount() << " nodes, "
         << (spec.shell ? mesh.triangles.size() : mesh.beams.size()) << (spec.shell ? " triangles)" : " beam elements)");
   pmesh.finish(mdesc.str());
@@ -240,8 +247,9 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   for (const auto& i : spec.interfaces) {
     Eigen::Vector3d projection = i.position;
     if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
-    else if (spec.shell->rectangle) projection.z() = 0.0;
+    else if (spec.shell && spec.shell->rectangle) projection.z() = 0.0;
     mesh_interfaces.push_back(resolveInterface(mesh, i, projection));
+    if (imported) checkImportedInterface(*imported, mesh_interfaces.back(), i);
     FlexInterface fi;
     fi.name = i.name;
     fi.node = mesh_interfaces.back().node;
@@ -283,7 +291,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
                   (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     }
     for (long n : s->second) {
-      conditions.push_back({n, mesh.nodes.row(n).transpose(), r.clamp});
+      // A solid node's rotations are no DOF: clamping it is pinning it.
+      conditions.push_back({n, mesh.nodes.row(n).transpose(), r.clamp && !(imported && imported->solid[static_cast<std::size_t>(n)])});
       rigid_conditions.push_back(conditions.back());
     }
   }
@@ -296,6 +305,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   DofMap map;
   try {
     map = buildDofMap(mesh, conditions, couplings, patch_conditions);
+    if (imported) holdSolidRotations(map, imported->solid);
   } catch (const std::invalid_argument& e) {
     const InputNode where = spec.reference.empty() ? spec.interfaces.front().node : spec.reference.front().node;
     where.fail(std::string("cannot apply the interfaces and reference conditions: ") + e.what());
@@ -308,10 +318,14 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   res.rigid_removed = rigid.cols();
 
   // --- assembly
-  const long n_tri = static_cast<long>(mesh.triangles.size());
-  const long n_el = n_tri + static_cast<long>(mesh.beams.size());
+  // The assembly's mesh: for an imported body its coupled node pairs are the "elements".
+  const Mesh& amesh = imported ? imported->pairs : mesh;
+  const long n_tri = static_cast<long>(amesh.triangles.size());
+  const long n_el = n_tri + static_cast<long>(amesh.beams.size());
   ElementKernel kernel = [&](long e, ElementResult& out) {
-    if (e < n_tri) {
+    if (imported) {
+      imported->pairMatrices(e, out);
+    } else if (e < n_tri) {
       const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
       Eigen::Matrix3d xyz;
       for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
@@ -333,12 +347,22 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   };
   Progress pasm("assembly", 1.0, quiet);
   AssembledSystem sys;
-  assemble(comm, mesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
+  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
   // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
   // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
   // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
   Eigen::VectorXd mass_moved;  // the moment correction added to the translational masses (lumped_moments)
-  if (spec.moment_lumping) {
+  if (imported) {
+    // The imported M stays as given in the eigenproblem; the nodal masses of
+    // /mass/nodal are fitted to its rigid-body projection (imported_body.h).
+    const ImportedLumping il = importedLumping(comm, *imported, quiet);
+    res.moment_lumping = il.applied;
+    res.lumping_min_ratio = il.min_ratio;
+    for (long k = 0; k < mesh.nodeCount(); ++k) {
+      sys.lumped.segment<3>(6 * k).setConstant(il.nodal(k, 0));
+      sys.lumped.segment<3>(6 * k + 3) = il.nodal.block<1, 3>(k, 1).transpose();
+    }
+  } else if (spec.moment_lumping) {
     const long n = mesh.nodeCount();
     Eigen::VectorXd m0(n);
     for (long k = 0; k < n; ++k) m0(k) = sys.lumped(6 * k);
@@ -522,8 +546,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     cb.K_lifts = Eigen::MatrixXd::Zero(6 * n, cb.lifts.cols());
     ElementResult er;
     for (long e = 0; e < n_el; ++e) {
-      const bool touches = e < n_tri ? std::any_of(mesh.triangles[static_cast<std::size_t>(e)].begin(), mesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
-                                     : std::any_of(mesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), mesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
+      const bool touches = e < n_tri ? std::any_of(amesh.triangles[static_cast<std::size_t>(e)].begin(), amesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
+                                     : std::any_of(amesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), amesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
       if (!touches) continue;
       kernel(e, er);
       const long a = static_cast<long>(er.nodes.size());
@@ -533,9 +557,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       for (long i = 0; i < a; ++i) cb.K_lifts.middleRows(6 * er.nodes[static_cast<std::size_t>(i)], 6) += KLe.middleRows(6 * i, 6);
     }
     // The free body (its couplings only) for the reduced K and M.
-    const DofMap free_map = buildDofMap(mesh, {}, couplings, {});
+    DofMap free_map = buildDofMap(mesh, {}, couplings, {});
+    if (imported) holdSolidRotations(free_map, imported->solid);
     AssembledSystem free_sys;
-    assemble(comm, mesh, free_map, n_el, kernel, free_sys);
+    assemble(comm, amesh, free_map, n_el, kernel, free_sys);
     if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
     cb.K_fixed = sys.K;
     cb.fixed = &map;
@@ -666,9 +691,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.nodal_mass(i, 0) = sys.lumped.segment<3>(6 * i).mean();
     body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
   }
-  body.stress = stressRecoveryData(mesh, spec, body.shapes);
-  const RigidProperties rp =
-      spec.shell ? shellProperties(mesh, spec.shell->laminate) : beamProperties(mesh, spec.beam->Ms, kSectionX2);
+  if (!imported) body.stress = stressRecoveryData(mesh, spec, body.shapes);
+  const RigidProperties rp = imported ? importedRigidProperties(*imported)
+                             : spec.shell ? shellProperties(mesh, spec.shell->laminate)
+                                          : beamProperties(mesh, spec.beam->Ms, kSectionX2);
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
   // The exact continuum values go beside it when they differ (row-sum lumping,
   // a moment correction that could not be applied, an asymmetric laminate whose

@@ -23,7 +23,8 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
   std::printf("  mesh: %ld nodes, %s; %ld DOF, %ld after the reference conditions, %ld rigid modes removed\n",
               b.nodeCount(),
               b.elements.count("triangles") ? (std::to_string(b.elements.at("triangles").rows()) + " triangles").c_str()
-                                            : (std::to_string(b.elements.at("beams").rows()) + " beam elements").c_str(),
+              : b.elements.count("beams")   ? (std::to_string(b.elements.at("beams").rows()) + " beam elements").c_str()
+                                            : "imported matrices",
               r.dofs, r.reduced_dofs, r.rigid_removed);
   std::printf("  mass %.6g kg, centre of mass [%.6g, %.6g, %.6g] m\n", b.mass, b.center_of_mass.x(),
               b.center_of_mass.y(), b.center_of_mass.z());

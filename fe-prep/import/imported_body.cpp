@@ -1,0 +1,401 @@
+#include "fe-prep/import/imported_body.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "fe-prep/import/matrix_files.h"
+#include "fe-prep/mass_lumping.h"
+
+namespace fc::feprep {
+namespace {
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
+  throw InputError(file, line, 0, "", what);
+}
+
+// Rigid motions of the nodes (6 n x 6): u = t + omega x X, theta = omega.
+Eigen::MatrixXd rigidModes(const Eigen::MatrixXd& X) {
+  const long n = X.rows();
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(6 * n, 6);
+  for (long k = 0; k < n; ++k) {
+    R.block<3, 3>(6 * k, 0).setIdentity();
+    R.block<3, 3>(6 * k, 3) = -skew(X.row(k).transpose());
+    R.block<3, 3>(6 * k + 3, 3).setIdentity();
+  }
+  return R;
+}
+
+// The mass matrix must be positive semi-definite: a negative diagonal, a zero
+// diagonal with couplings (a negative 2x2 minor), or a negative LDL^T pivot of
+// the DOF that carry mass is refused.
+void checkMassDefinite(const Eigen::SparseMatrix<double>& M, const DofList& dofs, const std::string& file) {
+  const long n = M.rows();
+  auto name = [&](long i) {
+    return "node " + std::to_string(dofs.dofs[static_cast<std::size_t>(i)].node) + " DOF " +
+           std::to_string(dofs.dofs[static_cast<std::size_t>(i)].dof);
+  };
+  const Eigen::VectorXd d = M.diagonal();
+  const double dmax = d.cwiseAbs().maxCoeff();
+  std::vector<long> keep(static_cast<std::size_t>(n), -1);
+  long m = 0;
+  for (long i = 0; i < n; ++i) {
+    if (d(i) < -1e-14 * dmax) {
+      std::ostringstream os;
+      os << "the mass matrix is indefinite: negative diagonal " << d(i) << " at " << name(i);
+      fail(file, 0, os.str());
+    }
+    if (d(i) > 1e-14 * dmax) keep[static_cast<std::size_t>(i)] = m++;
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  for (long c = 0; c < n; ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, c); it; ++it) {
+      const long r = it.row();
+      if (keep[static_cast<std::size_t>(r)] < 0 || keep[static_cast<std::size_t>(c)] < 0) {
+        if (it.value() != 0.0 && r != c)
+          fail(file, 0, "the mass matrix is indefinite: " + name(keep[static_cast<std::size_t>(r)] < 0 ? r : c) +
+                            " has no mass on its diagonal but couples to " + name(keep[static_cast<std::size_t>(r)] < 0 ? c : r));
+        continue;
+      }
+      t.emplace_back(keep[static_cast<std::size_t>(r)], keep[static_cast<std::size_t>(c)], it.value());
+    }
+  // Semi-definite is fine (a reduced-integration mass, C3D20R's, is singular):
+  // by Sylvester's law of inertia, M + delta I has as many negative LDL^T pivots
+  // as M has eigenvalues below -delta; delta = 1e-10 of the largest diagonal.
+  const double delta = 1e-10 * dmax;
+  for (long i = 0; i < m; ++i) t.emplace_back(i, i, delta);
+  Eigen::SparseMatrix<double> A(m, m);
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  if (ldlt.info() != Eigen::Success) fail(file, 0, "the mass matrix could not be factorised (indefinite)");
+  const Eigen::VectorXd D = ldlt.vectorD();
+  long negative = 0;
+  for (long i = 0; i < m; ++i) negative += D(i) < 0.0 ? 1 : 0;
+  if (negative > 0) {
+    std::ostringstream os;
+    os << "the mass matrix is indefinite: " << negative << " of its eigenvalues lie below -" << delta
+       << " (1e-10 of its largest diagonal entry; LDL^T pivots of M + delta I)";
+    fail(file, 0, os.str());
+  }
+}
+
+}  // namespace
+
+ImportedModel importMatrices(const MatricesSpec& spec) {
+  ImportedModel out;
+  DofList dofs;
+  StoredMatrix Ks, Ms;
+  if (!spec.dofs.empty()) dofs = readDofList(spec.dofs);
+  const long nd = static_cast<long>(dofs.dofs.size());
+  if (spec.format == "calculix") {
+    Ks = readTripletMatrix(spec.stiffness, nd);
+    Ms = readTripletMatrix(spec.mass, nd);
+  } else if (spec.format == "matrix_market") {
+    Ks = readMatrixMarket(spec.stiffness);
+    Ms = readMatrixMarket(spec.mass);
+  } else {  // abaqus
+    AbaqusMatrix k = readAbaqusMatrix(spec.stiffness, nd), m = readAbaqusMatrix(spec.mass, nd);
+    if (!k.dofs.dofs.empty() && !dofs.dofs.empty())
+      fail(spec.dofs, 0, "the stiffness file " + spec.stiffness + " names its DOF itself (node, dof, node, dof, value); drop dofs:");
+    if (!k.dofs.dofs.empty()) {
+      dofs = k.dofs;
+      if (m.dofs.dofs.empty()) fail(spec.mass, 0, "expected the same 'node, dof, node, dof, value' form as the stiffness");
+      // The mass may omit DOF (massless rotations): its entries go to the stiffness's rows.
+      std::map<std::pair<long, int>, long> row;
+      for (std::size_t i = 0; i < dofs.dofs.size(); ++i) row[{dofs.dofs[i].node, dofs.dofs[i].dof}] = static_cast<long>(i);
+      std::vector<long> to(m.dofs.dofs.size());
+      for (std::size_t i = 0; i < m.dofs.dofs.size(); ++i) {
+        auto it = row.find({m.dofs.dofs[i].node, m.dofs.dofs[i].dof});
+        if (it == row.end())
+          fail(spec.mass, m.dofs.dofs[i].line, "node " + std::to_string(m.dofs.dofs[i].node) + " DOF " +
+                                                   std::to_string(m.dofs.dofs[i].dof) + " has mass but no stiffness (not in " + spec.stiffness + ")");
+        to[i] = it->second;
+      }
+      for (auto& e : m.matrix.entries) e.row = to[static_cast<std::size_t>(e.row)], e.col = to[static_cast<std::size_t>(e.col)];
+      m.matrix.size = static_cast<long>(dofs.dofs.size());
+    } else if (dofs.dofs.empty()) {
+      fail(spec.stiffness, 0, "a 'row, column, value' matrix needs dofs: naming each row's node and DOF");
+    }
+    Ks = k.matrix;
+    Ms = m.matrix;
+  }
+  const long n_src = static_cast<long>(dofs.dofs.size());
+  out.source_dofs = n_src;
+  out.indexing = Ks.indexing;
+  Eigen::SparseMatrix<double> K = symmetricMatrix(Ks, n_src, "stiffness", dofs, &out.storage_K);
+  Eigen::SparseMatrix<double> M = symmetricMatrix(Ms, n_src, "mass", dofs, &out.storage_M);
+  checkMassDefinite(M, dofs, spec.mass);
+
+  // Nodes: those the DOF list names, in its order; each must be in the model.
+  const NodeTable table = readNodeTable(spec.model);
+  const std::set<long> solid_elements(table.solid_nodes.begin(), table.solid_nodes.end());
+  const std::set<long> structural_elements(table.structural_nodes.begin(), table.structural_nodes.end());
+  std::map<long, long> index;
+  std::vector<char> has_rotation;
+  for (const NodeDof& d : dofs.dofs) {
+    auto it = table.coordinates.find(d.node);
+    if (it == table.coordinates.end())
+      fail(dofs.file, d.line, "node " + std::to_string(d.node) + " is not in the model's node table " + table.file);
+    if (d.dof > 3 && solid_elements.count(d.node) && !structural_elements.count(d.node))
+      fail(dofs.file, d.line, "node " + std::to_string(d.node) + " carries rotation DOF " + std::to_string(d.dof) +
+                                  " but belongs only to solid elements in " + table.file + " (solid nodes have 3 DOF)");
+    if (index.emplace(d.node, static_cast<long>(index.size())).second) {
+      out.labels.push_back(d.node);
+      has_rotation.push_back(0);
+    }
+    if (d.dof > 3) has_rotation[static_cast<std::size_t>(index[d.node])] = 1;
+  }
+  const long n = static_cast<long>(out.labels.size());
+  // Every node needs its three translations; rotations come all three or none.
+  {
+    std::vector<int> bits(static_cast<std::size_t>(n), 0), first_line(static_cast<std::size_t>(n), 0);
+    for (const NodeDof& d : dofs.dofs) {
+      const auto k = static_cast<std::size_t>(index[d.node]);
+      bits[k] |= 1 << (d.dof - 1);
+      if (!first_line[k]) first_line[k] = d.line;
+    }
+    for (long k = 0; k < n; ++k) {
+      const int b = bits[static_cast<std::size_t>(k)];
+      if ((b & 7) != 7 || ((b & 56) != 0 && (b & 56) != 56))
+        fail(dofs.file, first_line[static_cast<std::size_t>(k)],
+             "node " + std::to_string(out.labels[static_cast<std::size_t>(k)]) +
+                 " lists DOF " + [&] {
+                   std::string t;
+                   for (int d = 0; d < 6; ++d)
+                     if (b & (1 << d)) t += (t.empty() ? "" : ", ") + std::to_string(d + 1);
+                   return t;
+                 }() + ": every node needs translations 1, 2, 3, and rotations 4, 5, 6 all or none "
+                       "(plane or axisymmetric models are not imported)");
+    }
+  }
+  const double L = spec.units.length;
+  out.mesh.nodes.resize(n, 3);
+  for (long k = 0; k < n; ++k) out.mesh.nodes.row(k) = L * table.coordinates.at(out.labels[static_cast<std::size_t>(k)]).transpose();
+  out.solid.resize(static_cast<std::size_t>(n));
+  for (long k = 0; k < n; ++k) out.solid[static_cast<std::size_t>(k)] = has_rotation[static_cast<std::size_t>(k)] ? 0 : 1;
+  for (const auto& [name, labels] : table.sets) {
+    std::vector<long> members;
+    for (long l : labels) {
+      auto it = index.find(l);
+      if (it != index.end()) members.push_back(it->second);
+    }
+    if (!members.empty()) out.mesh.sets[name] = members;
+  }
+
+  // To SI on 6 DOF per node: a DOF's SI value is s times the file's (s = L for
+  // translations, 1 for rotations), energies scale by E and kinetic energies by
+  // m L^2: K_ij (SI) = E K_ij / (s_i s_j), M_ij (SI) = m L^2 M_ij / (s_i s_j).
+  std::vector<long> to(static_cast<std::size_t>(n_src));
+  Eigen::VectorXd s(n_src);
+  for (long i = 0; i < n_src; ++i) {
+    const NodeDof& d = dofs.dofs[static_cast<std::size_t>(i)];
+    to[static_cast<std::size_t>(i)] = 6 * index[d.node] + d.dof - 1;
+    s(i) = d.dof <= 3 ? L : 1.0;
+  }
+  const double e_scale = spec.units.energy(), m_scale = spec.units.mass * L * L;
+  auto spread = [&](const Eigen::SparseMatrix<double>& A, double scale) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<std::size_t>(A.nonZeros()));
+    for (long c = 0; c < A.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it)
+        t.emplace_back(to[static_cast<std::size_t>(it.row())], to[static_cast<std::size_t>(c)],
+                       scale * it.value() / (s(it.row()) * s(c)));
+    Eigen::SparseMatrix<double> B(6 * n, 6 * n);
+    B.setFromTriplets(t.begin(), t.end());
+    return B;
+  };
+  out.K = spread(K, e_scale);
+  out.M = spread(M, m_scale);
+
+  if (!(rigidMassProjection(out.mesh.nodes, out.M).mass > 0.0))
+    fail(spec.mass, 0, "the mass matrix carries no mass in rigid translation (all zero?)");
+  // A free model: its rigid motions must not strain it.
+  const Eigen::MatrixXd R = rigidModes(out.mesh.nodes);
+  const Eigen::MatrixXd KR = out.K * R;
+  double knorm = 0.0;
+  for (long c = 0; c < out.K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(out.K, c); it; ++it) knorm = std::max(knorm, std::abs(it.value()));
+  double worst = 0.0;
+  for (int j = 0; j < 6; ++j) {
+    // Rotations weigh by the body size so that the measure is one of forces.
+    const double scale = knorm * R.col(j).cwiseAbs().maxCoeff();
+    worst = std::max(worst, KR.col(j).cwiseAbs().maxCoeff() / scale);
+  }
+  out.rigid_strain = worst;
+  if (worst > 1e-8)
+    fail(spec.stiffness, 0, "the stiffness strains rigid motions (|K r| / (|K| |r|) = " + std::to_string(worst) +
+                                "): the source model holds the body (boundary conditions, springs to ground) or is not "
+                                "in the model's coordinates; export the free model and give the conditions in reference:");
+
+  // Node pairs the matrices couple, for the assembly.
+  std::vector<std::vector<long>> partners(static_cast<std::size_t>(n));
+  for (const auto* A : {&out.K, &out.M})
+    for (long c = 0; c < A->outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*A, c); it; ++it) {
+        const long i = it.row() / 6, j = c / 6;
+        if (i <= j) partners[static_cast<std::size_t>(i)].push_back(j);
+      }
+  out.pairs.nodes = out.mesh.nodes;
+  for (long i = 0; i < n; ++i) {
+    auto& p = partners[static_cast<std::size_t>(i)];
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    for (long j : p) out.pairs.beams.push_back({i, j});
+  }
+  return out;
+}
+
+void ImportedModel::pairMatrices(long e, ElementResult& out) const {
+  const long i = pairs.beams[static_cast<std::size_t>(e)][0], j = pairs.beams[static_cast<std::size_t>(e)][1];
+  auto block = [&](const Eigen::SparseMatrix<double>& A, long a, long b) {
+    Eigen::Matrix<double, 6, 6> B = Eigen::Matrix<double, 6, 6>::Zero();
+    for (int c = 0; c < 6; ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, 6 * b + c); it; ++it)
+        if (it.row() >= 6 * a && it.row() < 6 * a + 6) B(it.row() - 6 * a, c) = it.value();
+    return B;
+  };
+  if (i == j) {
+    out.nodes = {i};
+    out.K = block(K, i, i);
+    out.M = block(M, i, i);
+    out.lumped = Eigen::VectorXd::Zero(6);
+    return;
+  }
+  out.nodes = {i, j};
+  out.K = Eigen::MatrixXd::Zero(12, 12);
+  out.M = Eigen::MatrixXd::Zero(12, 12);
+  out.K.block<6, 6>(0, 6) = block(K, i, j);
+  out.K.block<6, 6>(6, 0) = out.K.block<6, 6>(0, 6).transpose();
+  out.M.block<6, 6>(0, 6) = block(M, i, j);
+  out.M.block<6, 6>(6, 0) = out.M.block<6, 6>(0, 6).transpose();
+  out.lumped = Eigen::VectorXd::Zero(12);
+}
+
+MassProjection rigidMassProjection(const Eigen::MatrixXd& nodes, const Eigen::SparseMatrix<double>& M) {
+  const Eigen::MatrixXd R = rigidModes(nodes);
+  const Eigen::MatrixXd MR = M * R;
+  const Eigen::Matrix<double, 6, 6> P = R.transpose() * MR;
+  MassProjection p;
+  p.mass = P.topLeftCorner<3, 3>().trace() / 3.0;
+  p.misfit = (P.topLeftCorner<3, 3>() - p.mass * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() / p.mass;
+  // Rotation-translation block R_w^T M R_t = skew(S) for S = sum m_k X_k.
+  const Eigen::Matrix3d B = 0.5 * (P.block<3, 3>(3, 0) - P.block<3, 3>(3, 0).transpose());
+  p.first_moment = Eigen::Vector3d(B(2, 1), B(0, 2), B(1, 0));
+  p.inertia_about_origin = 0.5 * (P.bottomRightCorner<3, 3>() + P.bottomRightCorner<3, 3>().transpose());
+  return p;
+}
+
+ImportedLumping importedNodalMasses(const Eigen::MatrixXd& nodes, const Eigen::SparseMatrix<double>& M,
+                                   const MassProjection& p) {
+  const long n = nodes.rows();
+  const Eigen::VectorXd d = M.diagonal();
+  Eigen::VectorXd t(n);
+  for (long k = 0; k < n; ++k) t(k) = d.segment<3>(6 * k).mean();
+  const double c = p.mass / t.sum();
+  ImportedLumping out;
+  out.nodal.resize(n, 4);
+  Eigen::Matrix3d rotary = Eigen::Matrix3d::Zero();
+  for (long k = 0; k < n; ++k) {
+    out.nodal(k, 0) = c * t(k);
+    out.nodal.block<1, 3>(k, 1) = c * d.segment<3>(6 * k + 3).transpose();
+    rotary.diagonal() += out.nodal.block<1, 3>(k, 1).transpose();
+  }
+  // The translational masses' second moment E from J = tr(E) I - E + rotary.
+  const Eigen::Matrix3d Jt = p.inertia_about_origin - rotary;
+  const Eigen::Matrix3d E = 0.5 * Jt.trace() * Eigen::Matrix3d::Identity() - Jt;
+  const MomentLumping ml = momentConsistentMasses(nodes, out.nodal.col(0), p.mass, p.first_moment, E);
+  out.applied = ml.applied;
+  out.min_ratio = ml.min_ratio;
+  if (ml.applied) out.nodal.col(0) = ml.masses;
+  return out;
+}
+
+void holdSolidRotations(DofMap& map, const std::vector<char>& solid) {
+  const long n = static_cast<long>(map.T.size());
+  std::vector<char> used(static_cast<std::size_t>(map.reduced), 0), needed(static_cast<std::size_t>(map.reduced), 0);
+  for (long i = 0; i < n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    for (std::size_t c = 0; c < map.idx[ui].size(); ++c) {
+      const long g = map.idx[ui][c];
+      const Eigen::VectorXd col = map.T[ui].col(static_cast<long>(c));
+      if (col.cwiseAbs().maxCoeff() == 0.0) continue;
+      used[static_cast<std::size_t>(g)] = 1;
+      if (col.head<3>().cwiseAbs().maxCoeff() > 0.0 || (!solid[ui] && col.tail<3>().cwiseAbs().maxCoeff() > 0.0))
+        needed[static_cast<std::size_t>(g)] = 1;
+    }
+  }
+  std::vector<long> renumber(static_cast<std::size_t>(map.reduced), -1);
+  long next = 0;
+  for (long g = 0; g < map.reduced; ++g)
+    if (needed[static_cast<std::size_t>(g)] || !used[static_cast<std::size_t>(g)]) renumber[static_cast<std::size_t>(g)] = next++;
+  if (next == map.reduced) return;
+  for (long i = 0; i < n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    std::vector<long> cols;
+    for (std::size_t c = 0; c < map.idx[ui].size(); ++c)
+      if (renumber[static_cast<std::size_t>(map.idx[ui][c])] >= 0) cols.push_back(static_cast<long>(c));
+    const bool changed = cols.size() != map.idx[ui].size();
+    if (changed) {
+      Eigen::MatrixXd T(6, static_cast<long>(cols.size()));
+      std::vector<long> idx;
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        T.col(static_cast<long>(k)) = map.T[ui].col(cols[k]);
+        idx.push_back(map.idx[ui][static_cast<std::size_t>(cols[k])]);
+      }
+      map.T[ui] = T;
+      map.idx[ui] = idx;
+    }
+    for (long& g : map.idx[ui]) g = renumber[static_cast<std::size_t>(g)];
+    // Own rows: the node's own reduced DOF offset .. offset + count - 1.
+    const Eigen::MatrixXd own = map.own[ui];
+    std::vector<long> rows;
+    for (long r = 0; r < own.rows(); ++r)
+      if (renumber[static_cast<std::size_t>(map.offset[ui] + r)] >= 0) rows.push_back(r);
+    if (static_cast<long>(rows.size()) != own.rows()) {
+      map.own[ui].resize(static_cast<long>(rows.size()), 6);
+      for (std::size_t k = 0; k < rows.size(); ++k) map.own[ui].row(static_cast<long>(k)) = own.row(rows[k]);
+      map.unconstrained[ui] = 0;
+    }
+    if (changed) map.unconstrained[ui] = 0;
+  }
+  long off = 0;
+  for (long i = 0; i < n; ++i) {
+    map.offset[static_cast<std::size_t>(i)] = off;
+    off += map.own[static_cast<std::size_t>(i)].rows();
+  }
+  map.reduced = next;
+}
+
+Eigen::VectorXd readCalculixEigenvalues(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, 0, "cannot open the file");
+  std::string raw;
+  int line = 0;
+  bool table = false;
+  std::vector<double> values;
+  while (std::getline(in, raw)) {
+    ++line;
+    if (!table) {
+      table = raw.find("E I G E N V A L U E   O U T P U T") != std::string::npos;
+      continue;
+    }
+    std::istringstream ss(raw);
+    long mode;
+    double lambda;
+    if (ss >> mode >> lambda) {
+      if (mode != static_cast<long>(values.size()) + 1)
+        fail(path, line, "expected mode " + std::to_string(values.size() + 1) + " in the eigenvalue table");
+      values.push_back(lambda);
+    } else if (!values.empty()) {
+      break;  // the table ends at the first non-numeric line after its rows
+    }
+  }
+  if (values.empty()) fail(path, line, "no CalculiX eigenvalue table (E I G E N V A L U E   O U T P U T) found");
+  return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<long>(values.size()));
+}
+
+}  // namespace fc::feprep
