@@ -526,10 +526,7 @@ void parseSimulation(const InputNode& s, Settings& st) {
   }
   if (!s.has("integrator")) return;  // keep the preset's (or the default auto)
   const std::string integ = s["integrator"].asString();
-  if (integ == "auto") st.integrator = IntegratorKind::Auto;
-  else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;
-  else if (integ == "trbdf2") st.integrator = IntegratorKind::TrBdf2;
-  else if (integ == "imex") st.integrator = IntegratorKind::Imex;
+  if (const std::optional<IntegratorKind> kind = integratorNamed(integ)) st.integrator = *kind;
   else s["integrator"].fail("expected auto, dopri5, trbdf2 or imex, got '" + integ + "'");
 }
 
@@ -654,11 +651,22 @@ Model parseScene(const InputNode& root) {
   forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
   if (root.has("outputs")) parseOutputs(root["outputs"], m);
   parseSimulation(root["simulation"], m.settings);
-  if (m.settings.integrator == IntegratorKind::Auto) {
-    m.settings.integrator = chooseIntegrator(m);
-    m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
-  }
+  resolveAutoIntegrator(m);
   return m;
+}
+
+std::optional<IntegratorKind> integratorNamed(const std::string& name) {
+  if (name == "auto") return IntegratorKind::Auto;
+  if (name == "dopri5") return IntegratorKind::DormandPrince;
+  if (name == "trbdf2") return IntegratorKind::TrBdf2;
+  if (name == "imex") return IntegratorKind::Imex;
+  return std::nullopt;
+}
+
+void resolveAutoIntegrator(Model& m) {
+  if (m.settings.integrator != IntegratorKind::Auto) return;
+  m.settings.integrator = chooseIntegrator(m);
+  m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
 }
 
 Model loadScene(const std::string& path) { return parseScene(InputNode::loadFile(path)); }
