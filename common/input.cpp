@@ -377,9 +377,7 @@ void InputNode::allowKeys(const std::vector<std::string>& allowed) const {
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string msg = "unknown key '" + key + "'";
-    const std::string guess = closestMatch(key, allowed);
-    if (!guess.empty()) msg += " (did you mean '" + guess + "'?)";
+    std::string msg = "unknown key '" + key + "'" + didYouMean(key, allowed);
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
     msg += "; expected one of: " + list;
@@ -400,6 +398,11 @@ std::string closestMatch(const std::string& word, const std::vector<std::string>
     }
   }
   return best;
+}
+
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string guess = closestMatch(word, candidates);
+  return guess.empty() ? "" : " (did you mean '" + guess + "'?)";
 }
 
 namespace {

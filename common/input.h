@@ -106,5 +106,8 @@ std::vector<std::pair<std::string, InputNode>> namedEntries(const InputNode& blo
 
 // Closest candidate by edit distance, or "" when nothing is close.
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
+// The hint every "unknown NAME" message ends with: " (did you mean 'X'?)" for
+// the closest candidate X, or "" when nothing is close.
+std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace fc

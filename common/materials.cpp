@@ -213,9 +213,7 @@ const Material& lookupMaterial(const MaterialLibrary& lib, const InputNode& node
   if (it != lib.end()) return it->second;
   std::vector<std::string> names;
   for (const auto& kv : lib) names.push_back(kv.first);
-  std::string msg = "unknown material '" + name + "'";
-  const std::string guess = closestMatch(name, names);
-  if (!guess.empty()) msg += " (did you mean '" + guess + "'?)";
+  std::string msg = "unknown material '" + name + "'" + didYouMean(name, names);
   msg += names.empty() ? "; no materials are defined" : "; defined materials: ";
   for (std::size_t i = 0; i < names.size(); ++i) msg += (i ? ", " : "") + names[i];
   node.fail(msg);

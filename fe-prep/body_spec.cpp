@@ -44,8 +44,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
     if (it == laminates.end()) {
       std::vector<std::string> names;
       for (const auto& kv : laminates) names.push_back(kv.first);
-      const std::string near = closestMatch(name, names);
-      ln.fail("unknown laminate '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+      ln.fail("unknown laminate '" + name + "'" + didYouMean(name, names) +
               "; expected a name from the laminates: block");
     }
     shell.laminate = laminateStiffness(it->second, materials, kappa);
@@ -274,8 +273,7 @@ BodySpec parseBodySpec(const InputNode& root) {
           // Geo files define their own sets (physical groups); checked after meshing.
           const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.matrices;
           if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
-            const std::string near = closestMatch(set, known);
-            item.fail("unknown set '" + set + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+            item.fail("unknown set '" + set + "'" + didYouMean(set, known) +
                       "; expected an interface name" +
                       (spec.beam ? ", end_min or end_max" : ", edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
           }
@@ -323,8 +321,7 @@ BodySpec parseBodySpec(const InputNode& root) {
           if (std::none_of(spec.interfaces.begin(), spec.interfaces.end(), [&](const InterfaceSpec& f) { return f.name == name; })) {
             std::vector<std::string> known;
             for (const auto& f : spec.interfaces) known.push_back(f.name);
-            const std::string near = closestMatch(name, known);
-            c.at(i).fail("no interface '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+            c.at(i).fail("no interface '" + name + "'" + didYouMean(name, known));
           }
           spec.static_correction_interfaces.push_back(name);
         }

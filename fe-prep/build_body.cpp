@@ -286,9 +286,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       std::vector<std::string> known;
       for (const auto& kv : mesh.sets) known.push_back(kv.first);
       for (const auto& f : body.interfaces) known.push_back(f.name);
-      const std::string near = closestMatch(r.set, known);
-      r.node.fail("the mesh has no node set or interface '" + r.set + "'" +
-                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      r.node.fail("the mesh has no node set or interface '" + r.set + "'" + didYouMean(r.set, known));
     }
     for (long n : s->second) {
       // A solid node's rotations are no DOF: clamping it is pinning it.

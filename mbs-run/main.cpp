@@ -166,14 +166,12 @@ int main(int argc, char** argv) {
     fc::mbs::Model model = fc::mbs::loadScene(input);
     if (t_end > 0) model.settings.t_end = t_end;
     if (rtol > 0) model.settings.rtol = rtol;
-    if (integrator == "dopri5") model.settings.integrator = fc::mbs::IntegratorKind::DormandPrince;
-    if (integrator == "trbdf2") model.settings.integrator = fc::mbs::IntegratorKind::TrBdf2;
-    if (integrator == "imex") model.settings.integrator = fc::mbs::IntegratorKind::Imex;
-    if (integrator == "auto") model.settings.integrator = fc::mbs::chooseIntegrator(model);
-    // A named method is used throughout; auto may switch (Settings::switch_when_stiff).
-    if (!integrator.empty())
-      model.settings.switch_when_stiff =
-          integrator == "auto" && model.settings.integrator == fc::mbs::IntegratorKind::DormandPrince;
+    // --integrator replaces the scene's choice, parsed and decided as the scene's (scene.h).
+    if (!integrator.empty()) {
+      model.settings.integrator = *fc::mbs::integratorNamed(integrator);
+      model.settings.switch_when_stiff = false;
+      fc::mbs::resolveAutoIntegrator(model);
+    }
     std::vector<std::string> chosen = splitComma(channels);
     if (chosen.empty()) {
       for (const auto& j : model.joints)

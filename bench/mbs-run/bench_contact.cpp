@@ -5,13 +5,13 @@
 // (the chord bars near contact), 60 mm above (the stays), and through it.
 // Brute force (every segment against every triangle, every node placed:
 // geometryDistance on placedVertices, what the monitor did before) against
-// the broad phase (contact_tree.h: the tree built once, vertices placed on
+// the broad phase (bounding_volume_tree.h: the tree built once, vertices placed on
 // demand). Figures in docs/benchmarks.md, "Contact monitor".
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
-#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/monitors/distance.h"
 
 namespace {

@@ -35,6 +35,8 @@
 
 #include <vector>
 
+#include "mbs-run/model/al_method.h"
+
 namespace fc::mbs {
 
 using SparseMatrixd = Eigen::SparseMatrix<double>;
@@ -89,8 +91,6 @@ struct AlResult {
   int iterations = 0;
   double residual = 0.0;  // ||Phi_v vdot + s||_inf at the end
 };
-
-enum class AlMethod { Automatic, BlockSchur, SparseSchur, SparseLdlt };
 
 // Holds the factorised K for one configuration, with copies of M and Phi_v,
 // and runs the multiplier iterations against it.

@@ -1,6 +1,6 @@
 #pragma once
-// The consistent start both formulations share (simulation.cpp and
-// tree_simulation.cpp), and the check after every projection that the joints
+// The consistent start both formulations share (run/constrained_dynamics.cpp
+// and run/tree_dynamics.cpp), and the check after every projection that the joints
 // can hold at all.
 #include <Eigen/Dense>
 

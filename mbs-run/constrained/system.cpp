@@ -245,42 +245,74 @@ const std::array<Eigen::MatrixXd, 6>* System::stiffenedInterface(int body, const
   return it == b.flex->stiffening->interfaces.end() ? nullptr : &it->second;
 }
 
+// The stages of f(t, y), each a function below: the configuration's
+// constraints and mass, factorised; the generalised forces (applied, modal,
+// geometric stiffening by the state); the accelerations from the augmented
+// Lagrangian; when stiffening depends on accelerations or joint loads, those
+// forces from the first solve and a second solve; the state derivative.
 void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
   ++stats_.evaluations;
-  const int nq = model_.nq, nv = model_.nv;
   poses(y, P_);
   assembleConstraints(t, P_);
   assembleMass(P_);
   factorize();
   ForceSums forces;
   appliedForces(P_, forces);
-  VectorXd& Q = forces.Q;
-  double& dissipation = forces.dissipation;
-  const double applied = forces.applied_power;
+  forces.Q += Qv_;
   double stiffening_power = 0.0;
+  const bool acceleration_stiffening = addModalForces(forces, stiffening_power);
+  addInterfaceForceStiffening(forces.Q, stiffening_power);
+  bool interface_stiffening = false;
+  for (std::size_t j = 0; j < model_.joints.size(); ++j)
+    if (joints_[j].enabled && (joint_stiffening_[j][0] || joint_stiffening_[j][1])) interface_stiffening = true;
+  const Settings& s = model_.settings;
+  const VectorXd v = y.segment(model_.nq, model_.nv);
+  const VectorXd phidot = Phi_v_ * v + phit_;
+  const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
+  AlResult r = solver_.accelerations(forces.Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
+                                     s.multiplier_iterations);
+  if (acceleration_stiffening || interface_stiffening) {
+    // Geometric stiffening by the frame's acceleration and angular acceleration
+    // and by the joints' loads: taken from this first solve, then solved once
+    // more with them (their change of the accelerations is of second order in w).
+    stats_.al_iterations += r.iterations;
+    addAccelerationStiffening(r, forces.Q, stiffening_power);
+    if (interface_stiffening) addJointLoadStiffening(r, forces.Q, stiffening_power);
+    r = solver_.accelerations(forces.Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()), s.multiplier_iterations);
+  }
+  lambda_ = r.lambda;
+  stats_.al_iterations += r.iterations;
+  stats_.max_al_iterations = std::max(stats_.max_al_iterations, r.iterations);
+  stateDerivative(y, r.vdot, forces.dissipation, forces.applied_power, stiffening_power, ydot);
+}
+
+// Modal stiffness and damping, - (Lambda w + D wdot) on the modal rows, and
+// the geometric stiffening by the frame's angular velocity (velocity cases,
+// flexible/geometric_stiffening.h; its work is booked with the applied loads',
+// docs/mbs-run.md). True when a body also has acceleration cases.
+bool System::addModalForces(ForceSums& forces, double& stiffening_power) const {
   bool acceleration_stiffening = false;
-  const VectorXd v = y.segment(nq, nv);
-  Q += Qv_;
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed || b.modes == 0) continue;
-    // Modal stiffness and damping: - (Lambda w + D wdot) on the modal rows.
-    Q.segment(b.dof_index + 6, b.modes) -= elasticForces(b.flex->modal, P_[k].modal, P_[k].modal_rate);
-    dissipation += dissipatedPower(b.flex->modal, P_[k].modal_rate);
+    forces.Q.segment(b.dof_index + 6, b.modes) -= elasticForces(b.flex->modal, P_[k].modal, P_[k].modal_rate);
+    forces.dissipation += dissipatedPower(b.flex->modal, P_[k].modal_rate);
     if (b.flex->stiffening) {
-      // Geometric stiffening, velocity cases (flexible/geometric_stiffening.h);
-      // its work is booked with the applied loads' (docs/mbs-run.md).
       const StiffeningParameters p = stiffeningParameters(P_[k].w, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
       const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, true, false) * P_[k].modal;
-      Q.segment(b.dof_index + 6, b.modes) -= f;
+      forces.Q.segment(b.dof_index + 6, b.modes) -= f;
       stiffening_power -= P_[k].modal_rate.dot(f);
       acceleration_stiffening = acceleration_stiffening || b.flex->stiffening->acceleration_cases;
     }
   }
-  // Force elements acting at an interface of a stiffened body (springs,
-  // dampers, constant forces): their force there, body axes, weights the
-  // interface's unit-force cases. It depends on the state only, so it goes
-  // into this first solve.
+  return acceleration_stiffening;
+}
+
+// Force elements acting at an interface of a stiffened body (springs,
+// dampers, constant forces): their force there, body axes, weights the
+// interface's unit-force cases. It depends on the state only, so it goes
+// into the first solve.
+void System::addInterfaceForceStiffening(VectorXd& Q, double& stiffening_power) {
   interface_forces_.clear();
   for (std::size_t f = 0; f < model_.forces.size(); ++f)
     if (force_on_[f] && stiffened_force_[f]) interfaceForces(model_, model_.forces[f], P_, interface_forces_);
@@ -293,64 +325,60 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     Q.segment(b.dof_index + 6, b.modes) -= f;
     stiffening_power -= P_[l.body].modal_rate.dot(f);
   }
-  bool interface_stiffening = false;
-  for (std::size_t j = 0; j < model_.joints.size(); ++j)
-    if (joints_[j].enabled && (joint_stiffening_[j][0] || joint_stiffening_[j][1])) interface_stiffening = true;
-  const Settings& s = model_.settings;
-  const VectorXd phidot = Phi_v_ * v + phit_;
-  const VectorXd stab = c_ + 2.0 * s.xi * s.omega * phidot + s.omega * s.omega * phi_;
-  AlResult r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
-                                     model_.settings.multiplier_iterations);
-  if (acceleration_stiffening || interface_stiffening) {
-    // Geometric stiffening by the frame's acceleration and angular acceleration:
-    // taken from this first solve, then solved once more with them (their
-    // change of the accelerations is of second order in w).
-    stats_.al_iterations += r.iterations;
-    Vector3d g = Vector3d::Zero();
-    for (std::size_t f = 0; f < model_.forces.size(); ++f)
-      if (force_on_[f] && model_.forces[f].type == ForceType::Gravity) g += model_.forces[f].vector;
-    for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
-      const Body& b = model_.bodies[k];
-      if (b.fixed || b.modes == 0 || !b.flex->stiffening || !b.flex->stiffening->acceleration_cases) continue;
-      const Vector3d a0 = P_[k].A.transpose() * (r.vdot.segment<3>(b.dof_index) - g);
-      const StiffeningParameters p = stiffeningParameters(Vector3d::Zero(), r.vdot.segment<3>(b.dof_index + 3), a0);
-      const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, false, true) * P_[k].modal;
+}
+
+// Stiffening by the frame's acceleration (gravity taken out: a body at rest
+// in gravity is not stiffened by it) and angular acceleration, from the first
+// solve's accelerations.
+void System::addAccelerationStiffening(const AlResult& r, VectorXd& Q, double& stiffening_power) const {
+  Vector3d g = Vector3d::Zero();
+  for (std::size_t f = 0; f < model_.forces.size(); ++f)
+    if (force_on_[f] && model_.forces[f].type == ForceType::Gravity) g += model_.forces[f].vector;
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
+    const Body& b = model_.bodies[k];
+    if (b.fixed || b.modes == 0 || !b.flex->stiffening || !b.flex->stiffening->acceleration_cases) continue;
+    const Vector3d a0 = P_[k].A.transpose() * (r.vdot.segment<3>(b.dof_index) - g);
+    const StiffeningParameters p = stiffeningParameters(Vector3d::Zero(), r.vdot.segment<3>(b.dof_index + 3), a0);
+    const VectorXd f = stiffeningMatrix(*b.flex->stiffening, p, false, true) * P_[k].modal;
+    Q.segment(b.dof_index + 6, b.modes) -= f;
+    stiffening_power -= P_[k].modal_rate.dot(f);
+  }
+}
+
+// Loads applied at interfaces: the force and moment a joint exerts on the
+// body at its interface point, body axes, from the first solve's multipliers
+// (the generalised force -J^T lambda: global force, then the moment about the
+// frame origin in body axes, s x F + M).
+void System::addJointLoadStiffening(const AlResult& r, VectorXd& Q, double& stiffening_power) const {
+  for (std::size_t j = 0; j < model_.joints.size(); ++j) {
+    const Joint& jt = model_.joints[j];
+    if (!joints_[j].enabled) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int k = side ? jt.body_j : jt.body_i;
+      const std::array<Eigen::MatrixXd, 6>* K = joint_stiffening_[j][static_cast<std::size_t>(side)];
+      if (!K) continue;
+      const ConstraintRows& rows = joint_rows_[j];
+      const VectorXd Qj = -((side ? rows.Jj : rows.Ji).transpose() * r.lambda.segment(row_of_joint_[j], rows.size()));
+      const Body& b = model_.bodies[static_cast<std::size_t>(k)];
+      const Vector3d F = P_[k].A.transpose() * Qj.head<3>();
+      const Vector3d at = (side ? jt.point_j : jt.point_i) + (side ? jt.shapes_j.psi : jt.shapes_i.psi) * P_[k].modal;
+      const Vector3d M = Qj.segment<3>(3) - at.cross(F);
+      VectorXd f = VectorXd::Zero(b.modes);
+      for (int c = 0; c < 3; ++c) f += (F(c) * (*K)[c] + M(c) * (*K)[3 + c]) * P_[k].modal;
       Q.segment(b.dof_index + 6, b.modes) -= f;
       stiffening_power -= P_[k].modal_rate.dot(f);
     }
-    // Loads applied at interfaces: the force and moment a joint exerts on the
-    // body at its interface point, body axes, from this first solve's
-    // multipliers (the generalised force -J^T lambda: global force, then the
-    // moment about the frame origin in body axes, s x F + M).
-    for (std::size_t j = 0; j < model_.joints.size() && interface_stiffening; ++j) {
-      const Joint& jt = model_.joints[j];
-      if (!joints_[j].enabled) continue;
-      for (int side = 0; side < 2; ++side) {
-        const int k = side ? jt.body_j : jt.body_i;
-        const std::array<Eigen::MatrixXd, 6>* K = joint_stiffening_[j][static_cast<std::size_t>(side)];
-        if (!K) continue;
-        const ConstraintRows& rows = joint_rows_[j];
-        const VectorXd Qj = -((side ? rows.Jj : rows.Ji).transpose() * r.lambda.segment(row_of_joint_[j], rows.size()));
-        const Body& b = model_.bodies[static_cast<std::size_t>(k)];
-        const Vector3d F = P_[k].A.transpose() * Qj.head<3>();
-        const Vector3d at = (side ? jt.point_j : jt.point_i) + (side ? jt.shapes_j.psi : jt.shapes_i.psi) * P_[k].modal;
-        const Vector3d M = Qj.segment<3>(3) - at.cross(F);
-        VectorXd f = VectorXd::Zero(b.modes);
-        for (int c = 0; c < 3; ++c) f += (F(c) * (*K)[c] + M(c) * (*K)[3 + c]) * P_[k].modal;
-        Q.segment(b.dof_index + 6, b.modes) -= f;
-        stiffening_power -= P_[k].modal_rate.dot(f);
-      }
-    }
-    r = solver_.accelerations(Q, stab, 1e-10 * (1.0 + stab.lpNorm<Eigen::Infinity>()),
-                              model_.settings.multiplier_iterations);
   }
-  lambda_ = r.lambda;
-  stats_.al_iterations += r.iterations;
-  stats_.max_al_iterations = std::max(stats_.max_al_iterations, r.iterations);
+}
 
+// ydot from the accelerations: position rates (Euler parameters through L^T),
+// vdot, and the two energy quadratures. Work of drives: the generalised force
+// of the driven rows, -Phi_v^T lambda, does work at the rate -lambda . Phi_t on
+// the system (Phi_v v = -Phi_t).
+void System::stateDerivative(const VectorXd& y, const VectorXd& vdot, double dissipation, double applied_power,
+                             double stiffening_power, VectorXd& ydot) const {
+  const int nq = model_.nq, nv = model_.nv;
   ydot.setZero(size());
-  // Work of drives: the generalised force of the driven rows, -Phi_v^T lambda,
-  // does work at the rate -lambda . Phi_t on the system (Phi_v v = -Phi_t).
   double drive_power = 0.0;
   if (lambda_.size()) drive_power = lambda_.dot(phit_);
   for (const Body& b : model_.bodies) {
@@ -360,9 +388,9 @@ void System::derivative(double t, const VectorXd& y, VectorXd& ydot) {
     ydot.segment<4>(b.pos_index + 3) = 0.5 * fc::Lmatrix(p).transpose() * y.segment<3>(nq + b.dof_index + 3);
     if (b.modes > 0) ydot.segment(b.pos_index + 7, b.modes) = y.segment(nq + b.dof_index + 6, b.modes);
   }
-  ydot.segment(nq, nv) = r.vdot;
+  ydot.segment(nq, nv) = vdot;
   ydot[nq + nv] = dissipation;
-  ydot[nq + nv + 1] = applied + drive_power + stiffening_power;
+  ydot[nq + nv + 1] = applied_power + drive_power + stiffening_power;
 }
 
 StiffModalPart System::modalSplit(double t, const VectorXd& y) {

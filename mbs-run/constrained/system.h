@@ -158,6 +158,13 @@ class System {
   // quadratic-velocity terms) and the powers of dampers and non-conservative
   // loads (force_elements.h).
   void appliedForces(const std::vector<BodyPose>& P, ForceSums& sums) const;
+  // The stages of derivative() (system.cpp), on the poses P_.
+  bool addModalForces(ForceSums& forces, double& stiffening_power) const;
+  void addInterfaceForceStiffening(Eigen::VectorXd& Q, double& stiffening_power);
+  void addAccelerationStiffening(const AlResult& r, Eigen::VectorXd& Q, double& stiffening_power) const;
+  void addJointLoadStiffening(const AlResult& r, Eigen::VectorXd& Q, double& stiffening_power) const;
+  void stateDerivative(const Eigen::VectorXd& y, const Eigen::VectorXd& vdot, double dissipation,
+                       double applied_power, double stiffening_power, Eigen::VectorXd& ydot) const;
   void factorize();
   double penalty() const;
   // Newton passes on the positions (project(), assemble()): frames_only

@@ -1,22 +1,26 @@
 #pragma once
 // The constant description of a multibody scene (Pinocchio's Model/Data split):
 // bodies, joints, force elements, events and run settings, as parsed from the
-// scene. Nothing here changes while integrating; the evolving state lives in
-// SystemState (state.h) and the run-time switches in Switches (switches below).
+// scene. Nothing here changes while integrating: the evolving state is the
+// integrators' vector y (constrained/system.h, tree/kinematic_tree.h) and the
+// run-time switches of the joints in JointRuntime (mechanics/constraints.h),
+// those of the forces in System. It includes nothing of the engine: the
+// layers above read it (docs/architecture.md).
 #include <Eigen/Dense>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "mbs-run/constrained/augmented_lagrangian.h"
-#include "mbs-run/monitors/distance.h"
+#include "mbs-run/model/al_method.h"
 
 namespace fc::mbs {
 
+struct BodyGeometry;  // mbs-run/monitors/distance.h
 struct FlexibleBodyData;  // mbs-run/mechanics/flexible/flexible_body.h
 struct BodyStressRecovery;  // mbs-run/monitors/stress_recovery.h
-struct BoundingTree;  // mbs-run/monitors/contact_tree.h
+struct BoundingTree;  // mbs-run/monitors/bounding_volume_tree.h
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -46,7 +50,7 @@ struct Body {
   // Shape for the contact monitor (distance.h): a rod's axis, a plate's
   // mid-plane, a `geometry:` key, or a flexible body's mesh; null if none.
   std::shared_ptr<const BodyGeometry> geometry;
-  // Its broad-phase tree (contact_tree.h), built for the bodies the monitor names.
+  // Its broad-phase tree (bounding_volume_tree.h), built for the bodies the monitor names.
   std::shared_ptr<const BoundingTree> geometry_tree;
   // Stress recovery (`outputs: {stresses: [...]}`, stress_recovery.h): set only
   // for the bodies named there; null costs nothing.
@@ -195,6 +199,10 @@ struct Settings {
   AlMethod linear_solver = AlMethod::Automatic;
   Formulation formulation = Formulation::Auto;
 };
+
+// The absolute tolerance a run uses: `atol`, or 1e-3 rtol when the scene
+// gives none (the one place this default is written).
+double absoluteTolerance(const Settings& st);
 
 struct Model {
   std::vector<Body> bodies;

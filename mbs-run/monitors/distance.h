@@ -44,7 +44,7 @@ double segmentTriangleDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 
 // Vertex k in the global frame for a body at (r, A) with modal coordinates w:
 // A (x_k + sum_j Phi_kj w_j) + r, the sum in mode order (the broad phase,
-// contact_tree.h, places single vertices with the same arithmetic).
+// bounding_volume_tree.h, places single vertices with the same arithmetic).
 Eigen::Vector3d placedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::Vector3d& r, const Eigen::Matrix3d& A,
                              const Eigen::VectorXd& w);
 // Vertex k deformed, in the body frame: x_k + sum_j Phi_kj w_j (the first half of placedVertex).
@@ -54,7 +54,7 @@ Eigen::Matrix3Xd placedVertices(const BodyGeometry& g, const Eigen::Vector3d& r,
                                 const Eigen::VectorXd& w);
 // Smallest distance between two placed geometries (isolated vertices count
 // as points); infinity if either is empty. Every primitive against every
-// other: the reference for treeDistance() (contact_tree.h), which the runs use.
+// other: the reference for treeDistance() (bounding_volume_tree.h), which the runs use.
 double geometryDistance(const BodyGeometry& ga, const Eigen::Matrix3Xd& va, const BodyGeometry& gb,
                         const Eigen::Matrix3Xd& vb);
 

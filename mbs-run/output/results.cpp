@@ -330,7 +330,7 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
   // The tolerances actually used (scene, preset or --rtol), for studies that
   // compare runs.
   f.setAttribute("/", "rtol", model.settings.rtol);
-  f.setAttribute("/", "atol", model.settings.atol > 0 ? model.settings.atol : 1e-3 * model.settings.rtol);
+  f.setAttribute("/", "atol", absoluteTolerance(model.settings));
   f.setAttribute("/", "output_step", model.settings.output_step);
   f.setAttribute("/", "t_reached", r.t_reached);
   f.setAttribute("/", "max_constraint_violation", r.max_violation);

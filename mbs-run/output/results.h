@@ -14,7 +14,7 @@
 
 #include "common/h5io.h"
 #include "mbs-run/model/model.h"
-#include "mbs-run/run/simulation.h"
+#include "mbs-run/run/history.h"
 
 namespace fc::mbs {
 

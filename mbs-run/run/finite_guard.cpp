@@ -21,10 +21,10 @@ Rhs FiniteGuard::rhs() {
 void FiniteGuard::evaluate(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
   if (watch_signals_) fc::throwIfTerminated();
   try {
-    sys_.derivative(t, y, ydot);
+    f_(t, y, ydot);
   } catch (const std::runtime_error&) {
     // A factorisation that fails on a non-finite matrix: say what is non-finite.
-    const std::string cause = sys_.nonFiniteCause(t, y);
+    const std::string cause = cause_(t, y);
     if (!cause.empty()) throw NonFiniteState("non-finite state: " + cause + " is not finite" + at(t));
     throw;
   }
@@ -33,7 +33,7 @@ void FiniteGuard::evaluate(double t, const Eigen::VectorXd& y, Eigen::VectorXd& 
     return;
   }
   if (consecutive_++ == 0) {
-    const std::string cause = sys_.nonFiniteCause(t, y);
+    const std::string cause = cause_(t, y);
     first_cause_ = (cause.empty() ? std::string("the constraint solve") : cause) + at(t);
   }
   if (consecutive_ >= kMaxNonFinite)

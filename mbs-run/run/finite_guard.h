@@ -8,6 +8,7 @@
 // is still retrying.
 #include <Eigen/Dense>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -27,8 +28,12 @@ class FiniteGuard {
   // Consecutive non-finite evaluations tolerated: a few rejected steps of
   // Dormand-Prince (6 stages each) or Newton iterations of TR-BDF2.
   static constexpr int kMaxNonFinite = 30;
-  explicit FiniteGuard(System& sys) : sys_(sys) {}
-  // f(t, y) = sys.derivative, checked.
+  // What went non-finite at (t, y): "body B's mass", ...; "" when it cannot say.
+  using Cause = std::function<std::string(double, const Eigen::VectorXd&)>;
+  // Guards f; cause names the culprit (System::nonFiniteCause for the
+  // constrained formulation).
+  FiniteGuard(Rhs f, Cause cause) : f_(std::move(f)), cause_(std::move(cause)) {}
+  // f(t, y) checked.
   Rhs rhs();
   // From then on a recorded termination signal throws fc::Terminated from
   // inside the step (once the initial row is written, so a stopped run's file
@@ -39,7 +44,8 @@ class FiniteGuard {
 
  private:
   void evaluate(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot);
-  System& sys_;
+  Rhs f_;
+  Cause cause_;
   int consecutive_ = 0;
   bool watch_signals_ = false;
   std::string first_cause_;

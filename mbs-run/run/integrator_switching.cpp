@@ -7,8 +7,6 @@
 
 namespace fc::mbs {
 
-double absoluteTolerance(const Settings& st) { return st.atol > 0 ? st.atol : 1e-3 * st.rtol; }
-
 Tolerances tolerances(const Settings& st, int size) {
   Tolerances tol;
   tol.rtol = st.rtol;

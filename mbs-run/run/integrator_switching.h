@@ -22,7 +22,6 @@ namespace fc::mbs {
 // controlled): rtol, atol (default 1e-3 rtol), max_step (default ten output
 // intervals, so that a joint-angle event cannot hide two crossings inside one
 // long step of a slow motion). Both formulations integrate with it.
-double absoluteTolerance(const Settings& st);
 Tolerances tolerances(const Settings& st, int size);
 
 class IntegratorSwitching {

@@ -68,7 +68,7 @@ class StallMonitor {
 };
 
 // The status of a run whose step size underflowed at time t, with what to
-// change (both formulations, simulation.cpp and tree_simulation.cpp).
+// change (the one run loop, simulation.cpp, for both formulations).
 std::string stepFailure(double t, const std::string& integrator, double rtol, double atol);
 
 }  // namespace fc::mbs

@@ -6,7 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
 
@@ -80,7 +80,7 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
     }
   }
   // Contact monitor: smallest distance between each named pair's geometry
-  // (broad phase, contact_tree.h); each body placed once for all its pairs.
+  // (broad phase, bounding_volume_tree.h); each body placed once for all its pairs.
   std::vector<std::unique_ptr<PlacedGeometry>> placed(m.bodies.size());
   auto place = [&](int k) -> PlacedGeometry& {
     if (!placed[k]) {

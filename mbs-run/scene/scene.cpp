@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "common/rotations.h"
-#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
@@ -206,8 +206,7 @@ int bodyRef(const Model& m, const InputNode& n) {
   if (k < 0) {
     std::vector<std::string> names;
     for (const Body& b : m.bodies) names.push_back(b.name);
-    const std::string hint = closestMatch(name, names);
-    n.fail("unknown body '" + name + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+    n.fail("unknown body '" + name + "'" + didYouMean(name, names));
   }
   return k;
 }
@@ -226,11 +225,10 @@ Vector3d pointRef(const Model& m, int body, const InputNode& n, PointShapes& sha
              "' is rigid: expected body-frame coordinates [x, y, z]");
     if (!b.flex->findInterface(name)) {
       const std::vector<std::string> names = b.flex->interfaceNames();
-      const std::string hint = closestMatch(name, names);
       std::string known;
       for (const auto& k : names) known += (known.empty() ? "" : ", ") + k;
       n.fail("body '" + b.name + "' (" + b.flex->file + ") has no interface '" + name + "'" +
-             (hint.empty() ? "" : " (did you mean '" + hint + "'?)") + "; it has: " + known);
+             didYouMean(name, names) + "; it has: " + known);
     }
     const Marker mk = b.flex->marker(name);
     shapes.psi = mk.Psi;
@@ -248,10 +246,8 @@ JointType jointType(const InputNode& n) {
   if (t == "universal") return JointType::Universal;
   if (t == "cylindrical") return JointType::Cylindrical;
   if (t == "prismatic") return JointType::Prismatic;
-  const std::string hint =
-      closestMatch(t, {"spherical", "revolute", "fixed", "universal", "cylindrical", "prismatic"});
   n.fail("unknown joint type '" + t + "': expected spherical, revolute, fixed, universal, cylindrical or prismatic" +
-         (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+         didYouMean(t, {"spherical", "revolute", "fixed", "universal", "cylindrical", "prismatic"}));
 }
 
 Joint parseJoint(const Model& m, const InputNode& j) {
@@ -405,11 +401,10 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.body_i = bodyRef(m, f["body"]);
     fe.vector = vec3(f["torque"], kMaxLoad, "N m");
   } else {
-    const std::string hint =
-        closestMatch(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "force", "torque"});
     f["type"].fail("unknown force type '" + type +
                    "': expected gravity, rotational_spring_damper, translational_spring_damper, force or torque" +
-                   (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+                   didYouMean(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "force",
+                                     "torque"}));
   }
   return fe;
 }
@@ -489,8 +484,7 @@ void applyPreset(const InputNode& node, Settings& st) {
     }
     known.push_back(p.name);
   }
-  const std::string guess = closestMatch(name, known);
-  node.fail("unknown preset '" + name + "'" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+  node.fail("unknown preset '" + name + "'" + didYouMean(name, known) +
             "; expected fast or accurate");
 }
 
@@ -532,10 +526,7 @@ void parseSimulation(const InputNode& s, Settings& st) {
   }
   if (!s.has("integrator")) return;  // keep the preset's (or the default auto)
   const std::string integ = s["integrator"].asString();
-  if (integ == "auto") st.integrator = IntegratorKind::Auto;
-  else if (integ == "dopri5") st.integrator = IntegratorKind::DormandPrince;
-  else if (integ == "trbdf2") st.integrator = IntegratorKind::TrBdf2;
-  else if (integ == "imex") st.integrator = IntegratorKind::Imex;
+  if (const std::optional<IntegratorKind> kind = integratorNamed(integ)) st.integrator = *kind;
   else s["integrator"].fail("expected auto, dopri5, trbdf2 or imex, got '" + integ + "'");
 }
 
@@ -660,11 +651,22 @@ Model parseScene(const InputNode& root) {
   forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
   if (root.has("outputs")) parseOutputs(root["outputs"], m);
   parseSimulation(root["simulation"], m.settings);
-  if (m.settings.integrator == IntegratorKind::Auto) {
-    m.settings.integrator = chooseIntegrator(m);
-    m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
-  }
+  resolveAutoIntegrator(m);
   return m;
+}
+
+std::optional<IntegratorKind> integratorNamed(const std::string& name) {
+  if (name == "auto") return IntegratorKind::Auto;
+  if (name == "dopri5") return IntegratorKind::DormandPrince;
+  if (name == "trbdf2") return IntegratorKind::TrBdf2;
+  if (name == "imex") return IntegratorKind::Imex;
+  return std::nullopt;
+}
+
+void resolveAutoIntegrator(Model& m) {
+  if (m.settings.integrator != IntegratorKind::Auto) return;
+  m.settings.integrator = chooseIntegrator(m);
+  m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
 }
 
 Model loadScene(const std::string& path) { return parseScene(InputNode::loadFile(path)); }

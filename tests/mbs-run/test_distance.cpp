@@ -4,7 +4,7 @@
 // rod crossing another rod and a plate at constant velocity (distance
 // |z0 - v t| exactly), and a flexible beam whose mesh nodes are moved by its
 // modal coordinates (distance to a parallel rod = gap - largest deflection).
-// The broad phase (contact_tree.h) against the brute force, bit for bit, on
+// The broad phase (bounding_volume_tree.h) against the brute force, bit for bit, on
 // random poses and deformations of meshes, segments and points, on a
 // closed-form bump under a rod, and on the samples of a run.
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 
 #include "beam_body.h"
 #include "helpers.h"
-#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/monitors/distance.h"
 #include "mbs-run/run/simulation.h"
 

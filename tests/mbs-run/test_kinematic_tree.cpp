@@ -1,5 +1,5 @@
 // Issue 17: the joint-coordinate path (mbs-run/tree/kinematic_tree.h, Featherstone's
-// ABA; tree_simulation.h) against references nobody here wrote:
+// ABA; run/tree_dynamics.h) against references nobody here wrote:
 //  - the planar N-link chain in absolute angles (chain_reference.h, d'Alembert
 //    on the link centres, dense mass matrix): the accelerations to rounding;
 //  - the constrained path (Cartesian coordinates, augmented Lagrangian) on a

@@ -1,4 +1,4 @@
-#include "mbs-run/monitors/contact_tree.h"
+#include "mbs-run/monitors/bounding_volume_tree.h"
 
 #include <algorithm>
 #include <array>
