@@ -21,6 +21,7 @@
 - located errors: an unknown path (file, line, did-you-mean), impossible
   distribution parameters; a sample that makes the scene invalid (negative
   stiffness) is a rejected case with mbs-run's message, and the study goes on;
+  a case stopped by --case-timeout is failed with the run's own status;
 - body samples on the hinged panel: fe-prep builds one body file per distinct
   body YAML (a ply angle drawn from two values: two files for six cases), the
   90-degree one equal to the example's own panel (same frequencies), and the
@@ -218,6 +219,18 @@ check(len(rows) == 8 and neg and all(r["status"] == "rejected" and "stiffness" i
 check(all(r["status"] == "completed" for r in rows if float(r["forces.catch.stiffness"]) >= 0), "the others completed")
 summary = open(os.path.join(work, "s", "summary.md")).read()
 check(f"{len(neg)} rejected" in summary, "the summary counts the rejected cases")
+
+# A case that runs too long is stopped (--case-timeout: SIGTERM) and listed as failed with
+# the status mbs-run wrote; the rows it ran are kept and measured.
+p = subprocess.run([sys.executable, study_path, scene, "--out", os.path.join(work, "slow"), "--tools", build,
+                    "--t-end", "1e6", "--case-timeout", "1", "--sample", "forces.catch.damping=uniform(4, 6)",
+                    "--samples", "2", "--executor", "local", "--metric", "max_angle:hinge"], capture_output=True, text=True)
+with open(os.path.join(work, "slow", "cases.csv")) as f:
+    slow = list(csv.DictReader(f))
+check(p.returncode == 0 and all(r["status"] == "failed" and r["message"] == "interrupted by SIGTERM"
+                                and float(r["max_angle:hinge"]) > 1.5 for r in slow),
+      f"--case-timeout: cases stopped, failed, their rows measured: {[(r['status'], r['message']) for r in slow]}")
+check("interrupted by SIGTERM" in open(os.path.join(work, "slow", "summary.md")).read(), "the summary lists why")
 
 # ---- body samples: the hinged panel, a ply angle of two values and the spring torque scaled
 hp = os.path.join(work, "hinged-panel")
