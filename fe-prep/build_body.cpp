@@ -192,6 +192,64 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const Eigen::MatrixXd& s
   return d;
 }
 
+// "skin: 648 triangles (dst), 1.36 kg, laminate skin_layup, fibre axis [1, 0, 0]" per property.
+std::vector<std::string> regionSummary(const BodySpec& spec, const Mesh& mesh) {
+  auto vec = [](const Eigen::Vector3d& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%.4g, %.4g, %.4g]", v.x(), v.y(), v.z());
+    return std::string(buf);
+  };
+  std::vector<std::string> lines;
+  for (std::size_t p = 0; p < mesh.shell_properties.size(); ++p) {
+    long n = 0;
+    double mass = 0.0;
+    for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+      if (mesh.triangle_property[e] != static_cast<int>(p)) continue;
+      const auto& t = mesh.triangles[e];
+      const Eigen::Vector3d x0 = mesh.nodes.row(t[0]), x1 = mesh.nodes.row(t[1]), x2 = mesh.nodes.row(t[2]);
+      mass += 0.5 * (x1 - x0).cross(x2 - x0).norm() * mesh.shell_properties[p].laminate.mass_per_area;
+      ++n;
+    }
+    const ShellProperty& sp = mesh.shell_properties[p];
+    std::string axis = "fibre axis [1, 0, 0] (body x)";
+    if (spec.general)
+      for (const auto& r : spec.general->regions)
+        if (r.name == sp.name && r.shell)
+          axis = r.axis.kind == MaterialAxis::Kind::Vector
+                     ? "fibre axis " + vec(r.axis.vector) + " projected"
+                     : std::string("fibre axis ") + (r.axis.hoop ? "hoop" : "axial") + " of the cylinder through " +
+                           vec(r.axis.origin) + " along " + vec(r.axis.direction);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%s: %ld triangles (%s), %.6g kg, laminate %s, %s", sp.name.c_str(), n,
+                  sp.kind == fe::ShellKind::DST ? "dst" : "dkt", mass, sp.laminate_name.c_str(), axis.c_str());
+    lines.push_back(buf);
+  }
+  for (std::size_t p = 0; p < mesh.beam_properties.size(); ++p) {
+    long n = 0;
+    double mass = 0.0;
+    Eigen::Vector3d x2 = Eigen::Vector3d::UnitY();
+    for (std::size_t e = 0; e < mesh.beams.size(); ++e) {
+      if (mesh.beam_property[e] != static_cast<int>(p)) continue;
+      const auto& b = mesh.beams[e];
+      mass += (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm() * mesh.beam_properties[p].Ms(0, 0);
+      x2 = mesh.beam_x2[e];
+      ++n;
+    }
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%s: %ld beam elements, %.6g kg, section %s, x2 %s", mesh.beam_properties[p].name.c_str(),
+                  n, mass, mesh.beam_properties[p].source.c_str(), vec(x2).c_str());
+    lines.push_back(buf);
+  }
+  if (!mesh.point_masses.empty()) {
+    double m = 0.0;
+    for (const auto& pm : mesh.point_masses) m += pm.mass;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "masses: %zu concentrated, %.6g kg", mesh.point_masses.size(), m);
+    lines.push_back(buf);
+  }
+  return lines;
+}
+
 // The node sets a body's input names (interfaces' patches, reference sets):
 // physical groups used so need no region.
 std::vector<std::string> namedSets(const BodySpec& spec) {
@@ -765,6 +823,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   body.stress = stressRecoveryData(mesh, body.shapes, stress_note);
   if (!stress_note.empty() && rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
   const RigidProperties rp = meshProperties(mesh, false);
+  res.regions = regionSummary(spec, mesh);
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
   // The exact continuum values go beside it when they differ (row-sum lumping,
   // a moment correction that could not be applied, an asymmetric laminate whose
