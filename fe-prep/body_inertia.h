@@ -35,4 +35,13 @@ RigidProperties shellProperties(const Mesh& mesh, const LaminateStiffness& lam);
 RigidProperties beamProperties(const Mesh& mesh, const Eigen::Matrix<double, 6, 6>& Ms,
                                const Eigen::Vector3d& section_x2);
 
+// The whole body by its elements' own properties (mesh.h): each triangle its
+// laminate, each beam its section and x2 axis, plus the point masses (mass and
+// inertia about their points). reference_surface_only: the mass on the
+// reference surface and axis only (shell first and rotary moments, a section's
+// offsets and inertias and the point masses' inertias left out, point masses at
+// their nodes), what the lumped translational masses can represent
+// (mass_lumping.h).
+RigidProperties meshProperties(const Mesh& mesh, bool reference_surface_only);
+
 }  // namespace fc::feprep

@@ -6,6 +6,7 @@
 #include "common/files.h"
 #include "common/h5io.h"
 #include "common/materials.h"
+#include "common/units.h"
 
 namespace fc::feprep {
 namespace {
@@ -30,10 +31,10 @@ const Material& isotropicMaterial(const MaterialLibrary& lib, const InputNode& n
   return m;
 }
 
-ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const LaminateLibrary& laminates,
-                     BodySpec& body) {
-  s.allowKeys({"rectangle", "laminate", "material", "thickness", "element", "mesh", "shear_correction"});
-  ShellSpec shell;
+// The section of a shell (shell: or a shell region): laminate, or material +
+// thickness; element kind; shear correction. The caller checks the keys.
+ShellProperty parseShellSection(const InputNode& s, const MaterialLibrary& materials, const LaminateLibrary& laminates) {
+  ShellProperty p;
   const double kappa = s.number("shear_correction", 5.0 / 6.0);
   if (s.has("laminate")) {
     if (s.has("material") || s.has("thickness"))
@@ -47,23 +48,37 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
       ln.fail("unknown laminate '" + name + "'" + didYouMean(name, names) +
               "; expected a name from the laminates: block");
     }
-    shell.laminate = laminateStiffness(it->second, materials, kappa);
-    shell.laminate_name = name;
-    shell.plies = plyTable(it->second, materials);
+    p.laminate = laminateStiffness(it->second, materials, kappa);
+    p.laminate_name = name;
+    p.plies = plyTable(it->second, materials);
   } else if (s.has("material")) {
     const Material& m = lookupMaterial(materials, s["material"]);
     const double t = s["thickness"].asLength(1e-7, 1.0);  // as a ply (common/laminate.cpp)
-    shell.laminate = laminateStiffness(homogeneousLaminate(m.name, t), materials, kappa);
-    shell.laminate_name = m.name;
-    shell.plies = plyTable(homogeneousLaminate(m.name, t), materials);
+    p.laminate = laminateStiffness(homogeneousLaminate(m.name, t), materials, kappa);
+    p.laminate_name = m.name;
+    p.plies = plyTable(homogeneousLaminate(m.name, t), materials);
   } else {
     s.fail("missing the shell's section: expected laminate: NAME, or material: NAME with thickness: T");
   }
 
   const std::string el = s.string("element", "dst");
-  if (el == "dst") shell.kind = fe::ShellKind::DST;
-  else if (el == "dkt") shell.kind = fe::ShellKind::DKT;
+  if (el == "dst") p.kind = fe::ShellKind::DST;
+  else if (el == "dkt") p.kind = fe::ShellKind::DKT;
   else s["element"].fail("unknown element '" + el + "', expected dst or dkt");
+  return p;
+}
+
+ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const LaminateLibrary& laminates,
+                     BodySpec& body) {
+  s.allowKeys({"rectangle", "laminate", "material", "thickness", "element", "mesh", "shear_correction"});
+  ShellSpec shell;
+  {
+    const ShellProperty p = parseShellSection(s, materials, laminates);
+    shell.laminate = p.laminate;
+    shell.laminate_name = p.laminate_name;
+    shell.plies = p.plies;
+    shell.kind = p.kind;
+  }
 
   const InputNode mesh = s["mesh"];
   shell.mesh_node = mesh;
@@ -107,35 +122,29 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
   return shell;
 }
 
-BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpec& body) {
-  b.allowKeys({"length", "section", "elements"});
-  BeamSpec beam;
-  beam.length = b["length"].asLength(kMinLength, kMaxBodyLength);
-  if (b.has("elements")) {
-    beam.elements = b["elements"].asInt();
-    if (beam.elements < 1) b["elements"].fail("expected a positive number of elements");
-  }
-  const InputNode sec = b["section"];
+// A beam section (section: {file: ...} or an inline shape) into Ks, Ms and its source.
+void parseBeamSection(const InputNode& sec, const MaterialLibrary& materials, BodySpec& body, Matrix6d& Ks,
+                      Matrix6d& Ms, std::string& source) {
   if (sec.has("file")) {
     sec.allowKeys({"file"});
     const std::string path = resolveRelativeTo(sec.file(), sec["file"].asString());
     try {
       H5File f(path, H5File::Mode::Read);
       f.checkFormat("section", 1);
-      beam.Ks = f.readMatrix("/stiffness/timoshenko", 6, 6);
-      beam.Ms = f.readMatrix("/mass/matrix", 6, 6);
+      Ks = f.readMatrix("/stiffness/timoshenko", 6, 6);
+      Ms = f.readMatrix("/mass/matrix", 6, 6);
       // A beam needs a positive-definite section stiffness and a positive mass.
-      Eigen::LLT<Matrix6d> llt(0.5 * (beam.Ks + beam.Ks.transpose()));
+      Eigen::LLT<Matrix6d> llt(0.5 * (Ks + Ks.transpose()));
       if (llt.info() != Eigen::Success)
         throw H5Error(path + ": /stiffness/timoshenko is not positive definite");
-      if (!(beam.Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
+      if (!(Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
     } catch (const std::exception& e) {
       sec["file"].fail(std::string("cannot use section file: ") + e.what() +
                        "; expected a section-prep output (format section/1)");
     }
-    beam.section_source = path;
+    source = path;
     body.input_files.push_back(path);
-    return beam;
+    return;
   }
   const InputNode shape = sec["shape"];
   const std::string kind = shape.asString();
@@ -163,10 +172,124 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
     shape.fail("unknown inline section shape '" + kind +
                "', expected solid_circle, tube or rectangle (or section: {file: SECTION.h5} from section-prep)");
   }
-  beam.Ks = s.K;
-  beam.Ms = s.M;
-  beam.section_source = kind;
+  Ks = s.K;
+  Ms = s.M;
+  source = kind;
+}
+
+BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpec& body) {
+  b.allowKeys({"length", "section", "elements"});
+  BeamSpec beam;
+  beam.length = b["length"].asLength(kMinLength, kMaxBodyLength);
+  if (b.has("elements")) {
+    beam.elements = b["elements"].asInt();
+    if (beam.elements < 1) b["elements"].fail("expected a positive number of elements");
+  }
+  parseBeamSection(b["section"], materials, body, beam.Ks, beam.Ms, beam.section_source);
   return beam;
+}
+
+MaterialAxis parseAxis(const InputNode& a) {
+  MaterialAxis axis;
+  if (a.isSequence()) {
+    axis.vector = a.asVector(3);
+    if (!(axis.vector.norm() > 0)) a.fail("expected a non-zero vector");
+    axis.vector.normalize();
+    return axis;
+  }
+  a.allowKeys({"cylindrical", "along"});
+  const InputNode c = a["cylindrical"];
+  c.allowKeys({"origin", "direction"});
+  axis.kind = MaterialAxis::Kind::Cylindrical;
+  axis.origin = c["origin"].asVector(3);
+  axis.direction = c["direction"].asVector(3);
+  if (!(axis.direction.norm() > 0)) c["direction"].fail("expected a non-zero vector (the cylinder's axis)");
+  axis.direction.normalize();
+  const std::string along = a["along"].asString();
+  if (along == "hoop") axis.hoop = true;
+  else if (along != "axial") a["along"].fail("unknown direction '" + along + "', expected axial or hoop");
+  return axis;
+}
+
+// body.mesh: {file: F, size: h}, units:, regions:, ignore:.
+GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& materials, const LaminateLibrary& laminates,
+                             BodySpec& body) {
+  GeneralMeshSpec g;
+  const InputNode mesh = b["mesh"];
+  mesh.allowKeys({"file", "size", "max_triangles"});
+  g.file_node = mesh["file"];
+  g.file = resolveRelativeTo(mesh.file(), mesh["file"].asString());
+  try {
+    if (readTextFile(g.file).empty()) g.file_node.fail("mesh file '" + g.file + "' is empty");
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception&) {
+    g.file_node.fail("cannot read mesh file '" + g.file + "'; expected a gmsh .msh or .geo file");
+  }
+  body.input_files.push_back(g.file);
+  const std::string f = g.file;
+  auto ends = [&](const std::string& e) { return f.size() >= e.size() && f.compare(f.size() - e.size(), e.size(), e) == 0; };
+  if (!ends(".msh") && !ends(".geo"))
+    g.file_node.fail("unknown mesh file type '" + f + "'; expected a gmsh .msh (format 2.2 or 4.x) or .geo file");
+  if (mesh.has("size")) g.size = mesh["size"].asLength(kMinLength, kMaxBodyLength);
+  if (mesh.has("max_triangles")) {
+    g.max_triangles = mesh["max_triangles"].asInt();
+    if (g.max_triangles < 2) mesh["max_triangles"].fail("expected a triangle count of at least 2");
+  }
+  if (b.has("units")) {
+    g.units = b["units"].asString();
+    const UnitSystem* u = findUnitSystem(g.units);
+    if (!u) {
+      const std::string near = closestMatch(g.units, unitSystemNames());
+      std::string all;
+      for (const auto& n : unitSystemNames()) all += (all.empty() ? "" : ", ") + n;
+      b["units"].fail("unknown unit system '" + g.units + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                      "; expected one of " + all);
+    }
+    g.length_scale = u->length;
+  }
+  const InputNode regions = b["regions"];
+  if (!regions.isMap() || regions.keys().empty())
+    regions.fail("expected a map GROUP: {shell: {...}} or GROUP: {beam: {...}}, one entry per physical group");
+  for (const auto& name : regions.keys()) {
+    const InputNode r = regions[name];
+    r.allowKeys({"shell", "beam", "non_structural_mass"});
+    RegionSpec reg;
+    reg.name = name;
+    reg.node = r;
+    if (r.has("shell") == r.has("beam")) r.fail("expected exactly one of shell: {...} or beam: {...}");
+    if (r.has("shell")) {
+      const InputNode s = r["shell"];
+      s.allowKeys({"laminate", "material", "thickness", "element", "shear_correction", "axis"});
+      reg.shell = true;
+      reg.shell_property = parseShellSection(s, materials, laminates);
+      reg.shell_property.name = name;
+      if (s.has("axis")) reg.axis = parseAxis(s["axis"]);
+      if (r.has("non_structural_mass")) {
+        const double nsm = r["non_structural_mass"].asInRange(0.0, 1e4, "kg/m^2");
+        reg.shell_property.non_structural_mass = nsm;
+        reg.shell_property.laminate.mass_per_area += nsm;  // at the mid-surface
+      }
+    } else {
+      if (r.has("non_structural_mass"))
+        r["non_structural_mass"].fail("non_structural_mass is per area, for shell regions (a beam's section carries its mass)");
+      const InputNode bm = r["beam"];
+      bm.allowKeys({"section", "orientation"});
+      parseBeamSection(bm["section"], materials, body, reg.beam_property.Ks, reg.beam_property.Ms,
+                       reg.beam_property.source);
+      reg.beam_property.name = name;
+      reg.orientation = bm["orientation"].asVector(3);
+      if (!(reg.orientation.norm() > 0)) bm["orientation"].fail("expected a non-zero vector (the section's x2 direction)");
+    }
+    g.regions.push_back(reg);
+  }
+  if (b.has("ignore")) {
+    const InputNode ig = b["ignore"];
+    g.ignore_node = ig;
+    if (!ig.isSequence()) ig.fail("expected a list of physical group names");
+    for (std::size_t i = 0; i < ig.size(); ++i) g.ignore.push_back(ig.at(i).asString());
+  }
+  return g;
 }
 
 }  // namespace
@@ -186,15 +309,21 @@ BodySpec parseBodySpec(const InputNode& root) {
   if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
 
   const InputNode b = root["body"];
-  b.allowKeys({"name", "shell", "beam", "interfaces", "reference", "modes", "max_frequency_hz", "mass", "reduction",
-               "geometric_stiffness", "matrices", "units"});
+  b.allowKeys({"name", "shell", "beam", "mesh", "matrices", "units", "regions", "masses", "ignore", "interfaces",
+               "reference", "modes", "max_frequency_hz", "mass", "reduction", "geometric_stiffness"});
   spec.name = b.has("name") ? b["name"].asName() : std::string("body");
-  if (int(b.has("shell")) + int(b.has("beam")) + int(b.has("matrices")) != 1)
-    b.fail("expected exactly one of shell:, beam: or matrices:");
+  if (int(b.has("shell")) + int(b.has("beam")) + int(b.has("mesh")) + int(b.has("matrices")) != 1)
+    b.fail("expected exactly one of shell:, beam:, mesh: {file: ...} (with regions:) or matrices:");
+  if (!b.has("mesh"))
+    for (const char* k : {"regions", "masses", "ignore"})
+      if (b.has(k)) b[k].fail(std::string(k) + " belongs to a body from a mesh file (mesh: {file: ...})");
+  if (b.has("units") && !b.has("mesh") && !b.has("matrices"))
+    b["units"].fail("body.units gives the units of a mesh file or of imported matrices; a shell: or beam: body "
+                    "is read in the units of its YAML file (units: at the top of the file)");
   if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
   else if (b.has("beam")) spec.beam = parseBeam(b["beam"], materials, spec);
+  else if (b.has("mesh")) spec.general = parseGeneral(b, materials, laminates, spec);
   else spec.matrices = parseMatricesSpec(b, spec.input_files);
-  if (b.has("units") && !spec.matrices) b["units"].fail("units: applies to imported bodies (matrices:); shells and beams are in SI");
   if (spec.matrices && b.has("mass"))
     b["mass"].fail("an imported body uses its mass matrix as given (the nodal masses of /mass/nodal are fitted to it); drop mass:");
   if (spec.matrices && b.has("geometric_stiffness"))
@@ -219,11 +348,15 @@ BodySpec parseBodySpec(const InputNode& root) {
         else entry["coupling"].fail("unknown coupling '" + c + "', expected distributing (RBE3) or rigid (RBE2)");
         const InputNode nodes = entry["nodes"];
         i.nodes_node = nodes;
-        nodes.allowKeys({"within", "edge", "box"});
-        if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
+        nodes.allowKeys({"within", "edge", "box", "set"});
+        if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME, set: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
         if (nodes.has("within")) {
           i.select = PatchSelect::Within;
           i.within = nodes["within"].asLength(1e-9, kMaxBodyLength);
+        } else if (nodes.has("set")) {
+          // A node set of the mesh (a physical group); checked once the mesh is read.
+          i.select = PatchSelect::Set;
+          i.edge = nodes["set"].asString();
         } else if (nodes.has("edge")) {
           i.select = PatchSelect::Edge;
           i.edge = nodes["edge"].asString();
@@ -254,6 +387,43 @@ BodySpec parseBodySpec(const InputNode& root) {
     }
   }
 
+  // masses: [{at: [x, y, z] | INTERFACE, mass: m, inertia: [[...]]}]
+  if (b.has("masses")) {
+    if (!spec.general) b["masses"].fail("masses: belong to a body from a mesh file (mesh: {file: ...})");
+    const InputNode ms = b["masses"];
+    if (!ms.isSequence()) ms.fail("expected a list of {at: [x, y, z] or INTERFACE, mass: M, inertia: [[...], [...], [...]]}");
+    for (std::size_t k = 0; k < ms.size(); ++k) {
+      const InputNode m = ms.at(k);
+      m.allowKeys({"at", "mass", "inertia"});
+      MassSpec ma;
+      ma.node = m;
+      const InputNode at = m["at"];
+      if (at.isScalar()) {
+        ma.interface = at.asString();
+        if (!names.count(ma.interface)) {
+          const std::string near = closestMatch(ma.interface, std::vector<std::string>(names.begin(), names.end()));
+          at.fail("no interface '" + ma.interface + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                  "; expected a point [x, y, z] or an interface name");
+        }
+        for (const auto& i : spec.interfaces)
+          if (i.name == ma.interface) ma.at = i.position;
+      } else {
+        ma.at = at.asVector(3);
+        if (ma.at.cwiseAbs().maxCoeff() > 1e3) at.fail("expected coordinates within 1000 m of the body's origin (SI units)");
+      }
+      ma.mass = m["mass"].asInRange(0.0, 1e9, "kg");
+      if (m.has("inertia")) {
+        ma.inertia = m["inertia"].asMatrix(3, 3);
+        if ((ma.inertia - ma.inertia.transpose()).cwiseAbs().maxCoeff() > 1e-9 * ma.inertia.cwiseAbs().maxCoeff())
+          m["inertia"].fail("expected a symmetric inertia tensor");
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(ma.inertia);
+        if (es.eigenvalues().minCoeff() < -1e-12 * es.eigenvalues().cwiseAbs().maxCoeff())
+          m["inertia"].fail("expected a positive semi-definite inertia tensor (kg m^2, about the point)");
+      }
+      spec.general->masses.push_back(ma);
+    }
+  }
+
   // reference: free | {clamp: [...], pin: [...]}
   if (b.has("reference")) {
     const InputNode r = b["reference"];
@@ -271,7 +441,7 @@ BodySpec parseBodySpec(const InputNode& root) {
           const InputNode item = list.at(i);
           const std::string set = item.asString();
           // Geo files define their own sets (physical groups); checked after meshing.
-          const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.matrices;
+          const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.general || spec.matrices;
           if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
             item.fail("unknown set '" + set + "'" + didYouMean(set, known) +
                       "; expected an interface name" +

@@ -13,6 +13,7 @@
 #include "common/stress_data.h"
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/import/matrices_spec.h"
+#include "fe-prep/mesh.h"
 
 namespace fc::feprep {
 
@@ -39,9 +40,56 @@ struct BeamSpec {
   std::string section_source;      // file path or inline shape name
 };
 
+// The fibre reference axis (0 deg) of a shell region, as CalculiX's
+// *ORIENTATION or Nastran's MCID: a fixed vector projected on each element, or
+// a cylindrical system whose axial or hoop direction at the element's centroid
+// is projected (element_properties.h).
+struct MaterialAxis {
+  enum class Kind { Vector, Cylindrical };
+  Kind kind = Kind::Vector;
+  Eigen::Vector3d vector = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::UnitZ();  // cylindrical
+  bool hoop = false;  // along: hoop (else axial)
+};
+
+// One entry of body.regions: a physical group (or Nastran PID<n>) and its
+// shell or beam property.
+struct RegionSpec {
+  std::string name;
+  InputNode node;
+  bool shell = false;  // else beam
+  ShellProperty shell_property;
+  MaterialAxis axis;
+  BeamProperty beam_property;
+  Eigen::Vector3d orientation = Eigen::Vector3d::UnitY();  // beams: the section x2 direction
+};
+
+// A concentrated mass (body.masses): at a point (nearest node) or an interface's point.
+struct MassSpec {
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  std::string interface;  // non-empty: at this interface's point (its node)
+  double mass = 0.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the point
+  InputNode node;
+};
+
+// A body from a mesh file with regions (contracts.md, "General bodies").
+struct GeneralMeshSpec {
+  std::string file;  // resolved path
+  InputNode file_node;
+  double size = 0.0;            // .geo: element size cap
+  double length_scale = 1.0;    // units: the file's length unit in metres
+  std::string units = "m-kg-s";
+  std::vector<RegionSpec> regions;
+  std::vector<std::string> ignore;  // groups (or cards) the body leaves out
+  InputNode ignore_node;
+  std::vector<MassSpec> masses;
+  long max_triangles = 500000;
+};
+
 // How an interface point is attached (contracts.md, fe-prep "Distributed interfaces").
 enum class Coupling { Node, Rigid, Distributing };  // Node: rigidly to the one node at its projection
-enum class PatchSelect { Within, Edge, Box };
+enum class PatchSelect { Within, Edge, Box, Set };  // Set: nodes: {set: GROUP} (a mesh node set)
 
 struct InterfaceSpec {
   std::string name;
@@ -50,7 +98,7 @@ struct InterfaceSpec {
   Coupling coupling = Coupling::Node;
   PatchSelect select = PatchSelect::Within;
   double within = 0.0;          // nodes: {within: r}
-  std::string edge;             // nodes: {edge: NAME}
+  std::string edge;             // nodes: {edge: NAME} or {set: NAME}
   Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();  // nodes: {box: [lo, hi]}
   InputNode nodes_node;
 };
@@ -66,6 +114,7 @@ struct BodySpec {
   std::optional<ShellSpec> shell;
   std::optional<BeamSpec> beam;
   std::optional<MatricesSpec> matrices;  // a body from another FE code's matrices (fe-prep/import/)
+  std::optional<GeneralMeshSpec> general;  // body.mesh: {file: ...} with regions
   std::vector<InterfaceSpec> interfaces;
   std::vector<ReferenceEntry> reference;  // empty: free
   long modes = 0;

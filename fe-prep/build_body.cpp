@@ -16,6 +16,8 @@
 #include "fe-prep/beam_mesher.h"
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/craig_bampton.h"
+#include "fe-prep/element_properties.h"
+#include "fe-prep/mesh_files/gmsh_regions.h"
 #include "fe-prep/geometric_stiffness.h"
 #include "fe-prep/import/import_stage.h"
 #include <optional>
@@ -39,9 +41,6 @@ double peakRssMb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
-// Beams lie along body x; their section x2 axis is body y (contracts.md).
-const Eigen::Vector3d kSectionX2(0.0, 1.0, 0.0);
-
 void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -55,6 +54,25 @@ void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
   MPI_Bcast(mesh.nodes.data(), static_cast<int>(mesh.nodes.size()), MPI_DOUBLE, 0, comm);
   MPI_Bcast(mesh.triangles.data(), static_cast<int>(3 * sizes[1]), MPI_LONG, 0, comm);
   MPI_Bcast(mesh.beams.data(), static_cast<int>(2 * sizes[2]), MPI_LONG, 0, comm);
+  // Each element's group (mesh files with regions): the properties follow on every rank.
+  long has_groups = mesh.triangle_group.size() == mesh.triangles.size() && mesh.beam_group.size() == mesh.beams.size() &&
+                    !mesh.groups.empty();
+  MPI_Bcast(&has_groups, 1, MPI_LONG, 0, comm);
+  if (has_groups) {
+    mesh.triangle_group.resize(static_cast<std::size_t>(sizes[1]));
+    mesh.beam_group.resize(static_cast<std::size_t>(sizes[2]));
+    MPI_Bcast(mesh.triangle_group.data(), static_cast<int>(sizes[1]), MPI_INT, 0, comm);
+    MPI_Bcast(mesh.beam_group.data(), static_cast<int>(sizes[2]), MPI_INT, 0, comm);
+    std::string gnames;
+    for (const auto& g : mesh.groups) gnames += g + "\n";
+    long glen = static_cast<long>(gnames.size());
+    MPI_Bcast(&glen, 1, MPI_LONG, 0, comm);
+    gnames.resize(static_cast<std::size_t>(glen));
+    MPI_Bcast(gnames.data(), static_cast<int>(glen), MPI_CHAR, 0, comm);
+    mesh.groups.clear();
+    std::istringstream gin(gnames);
+    for (std::string g; std::getline(gin, g);) mesh.groups.push_back(g);
+  }
   // Sets as "name\n" strings plus their index lists.
   std::string names;
   std::vector<long> counts, members;
@@ -108,12 +126,27 @@ class Stopwatch {
 // What stress recovery needs (docs/stresses.md): every element's centroid
 // (beams: midpoint) and, for shells, the generalised strains at the centroid
 // per mode, through the element's own strain operator (the one its stiffness
-// integrates), plus the ply table; for beams, the section resultants at the
-// midpoint per mode.
-StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes) {
+// integrates, with its own laminate, kind and material axis), plus the ply
+// table; for beams, the section resultants at the midpoint per mode, each with
+// its own section and x2 axis. The body file holds one ply table and either
+// shells or beams: a body whose shell regions have different plies, or that
+// mixes shells and beams, gets none (`note` says so).
+StressRecoveryData stressRecoveryData(const Mesh& mesh, const Eigen::MatrixXd& shapes, std::string& note) {
   StressRecoveryData d;
   const long nm = shapes.cols();
-  if (spec.shell) {
+  if (!mesh.triangles.empty()) {
+    for (const auto& p : mesh.shell_properties)
+      if (p.plies.z_mid != mesh.shell_properties.front().plies.z_mid ||
+          p.plies.angle_deg != mesh.shell_properties.front().plies.angle_deg ||
+          p.plies.stiffness != mesh.shell_properties.front().plies.stiffness ||
+          p.plies.strength != mesh.shell_properties.front().plies.strength) {
+        note = "no stress recovery data: the shell regions have different ply tables (the body file holds one)";
+        return d;
+      }
+    if (!mesh.beams.empty()) {
+      note = "no stress recovery data: the body mixes shells and beams (the body file holds either)";
+      return d;
+    }
     const long ne = static_cast<long>(mesh.triangles.size());
     d.centroids.resize(ne, 3);
     d.shell_strains.resize(6 * ne, nm);
@@ -127,10 +160,11 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
         q.middleRows<6>(6 * i) = shapes.middleRows<6>(6 * t[static_cast<std::size_t>(i)]);
       }
       d.centroids.row(e) = xyz.colwise().mean();
+      const ShellProperty& p = mesh.shellProperty(e);
       d.shell_strains.middleRows<6>(6 * e) =
-          fe::shellStrainOperator(xyz, spec.shell->laminate, spec.shell->kind, Eigen::Vector3d::UnitX(), centre) * q;
+          fe::shellStrainOperator(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)], centre) * q;
     }
-    d.plies = spec.shell->plies;
+    d.plies = mesh.shell_properties.front().plies;
   } else {
     const long ne = static_cast<long>(mesh.beams.size());
     d.centroids.resize(ne, 3);
@@ -140,9 +174,92 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
     }
     // Section resultants at the midpoints per mode, by the element's own
     // equilibrium (fc::fe::beamMidpointResultants, docs/elements.md).
-    d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, kSectionX2, spec.beam->Ks, shapes);
+    if (mesh.beam_properties.size() == 1 &&
+        std::all_of(mesh.beam_x2.begin(), mesh.beam_x2.end(), [&](const Eigen::Vector3d& v) { return v == mesh.beam_x2.front(); })) {
+      d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, mesh.beam_x2.front(),
+                                                  mesh.beam_properties.front().Ks, shapes);
+    } else {
+      d.beam_resultants.resize(6 * ne, nm);
+      for (long e = 0; e < ne; ++e) {
+        const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+        Eigen::Matrix<double, 12, Eigen::Dynamic> q(12, nm);
+        q.topRows<6>() = shapes.middleRows<6>(6 * b[0]);
+        q.bottomRows<6>() = shapes.middleRows<6>(6 * b[1]);
+        d.beam_resultants.middleRows<6>(6 * e) =
+            fe::beamMidpointResultants(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                       mesh.beam_x2[static_cast<std::size_t>(e)], mesh.beamProperty(e).Ks) * q;
+      }
+    }
   }
   return d;
+}
+
+// "skin: 648 triangles (dst), 1.36 kg, laminate skin_layup, fibre axis [1, 0, 0]" per property.
+std::vector<std::string> regionSummary(const BodySpec& spec, const Mesh& mesh) {
+  auto vec = [](const Eigen::Vector3d& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%.4g, %.4g, %.4g]", v.x(), v.y(), v.z());
+    return std::string(buf);
+  };
+  std::vector<std::string> lines;
+  for (std::size_t p = 0; p < mesh.shell_properties.size(); ++p) {
+    long n = 0;
+    double mass = 0.0;
+    for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+      if (mesh.triangle_property[e] != static_cast<int>(p)) continue;
+      const auto& t = mesh.triangles[e];
+      const Eigen::Vector3d x0 = mesh.nodes.row(t[0]), x1 = mesh.nodes.row(t[1]), x2 = mesh.nodes.row(t[2]);
+      mass += 0.5 * (x1 - x0).cross(x2 - x0).norm() * mesh.shell_properties[p].laminate.mass_per_area;
+      ++n;
+    }
+    const ShellProperty& sp = mesh.shell_properties[p];
+    std::string axis = "fibre axis [1, 0, 0] (body x)";
+    if (spec.general)
+      for (const auto& r : spec.general->regions)
+        if (r.name == sp.name && r.shell)
+          axis = r.axis.kind == MaterialAxis::Kind::Vector
+                     ? "fibre axis " + vec(r.axis.vector) + " projected"
+                     : std::string("fibre axis ") + (r.axis.hoop ? "hoop" : "axial") + " of the cylinder through " +
+                           vec(r.axis.origin) + " along " + vec(r.axis.direction);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%s: %ld triangles (%s), %.6g kg, laminate %s, %s", sp.name.c_str(), n,
+                  sp.kind == fe::ShellKind::DST ? "dst" : "dkt", mass, sp.laminate_name.c_str(), axis.c_str());
+    lines.push_back(buf);
+  }
+  for (std::size_t p = 0; p < mesh.beam_properties.size(); ++p) {
+    long n = 0;
+    double mass = 0.0;
+    Eigen::Vector3d x2 = Eigen::Vector3d::UnitY();
+    for (std::size_t e = 0; e < mesh.beams.size(); ++e) {
+      if (mesh.beam_property[e] != static_cast<int>(p)) continue;
+      const auto& b = mesh.beams[e];
+      mass += (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm() * mesh.beam_properties[p].Ms(0, 0);
+      x2 = mesh.beam_x2[e];
+      ++n;
+    }
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%s: %ld beam elements, %.6g kg, section %s, x2 %s", mesh.beam_properties[p].name.c_str(),
+                  n, mass, mesh.beam_properties[p].source.c_str(), vec(x2).c_str());
+    lines.push_back(buf);
+  }
+  if (!mesh.point_masses.empty()) {
+    double m = 0.0;
+    for (const auto& pm : mesh.point_masses) m += pm.mass;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "masses: %zu concentrated, %.6g kg", mesh.point_masses.size(), m);
+    lines.push_back(buf);
+  }
+  return lines;
+}
+
+// The node sets a body's input names (interfaces' patches, reference sets):
+// physical groups used so need no region.
+std::vector<std::string> namedSets(const BodySpec& spec) {
+  std::vector<std::string> sets;
+  for (const auto& i : spec.interfaces)
+    if (i.coupling != Coupling::Node && (i.select == PatchSelect::Set || i.select == PatchSelect::Edge)) sets.push_back(i.edge);
+  for (const auto& r : spec.reference) sets.push_back(r.set);
+  return sets;
 }
 
 // " (modes 1, 2, 5)" for the reduction attribute when keep: chose them; empty
@@ -163,7 +280,19 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
   std::string error;
   if (rank == 0) {
     try {
-      if (spec.beam) {
+      if (spec.general) {
+        RegionMeshRequest r;
+        r.path = spec.general->file;
+        r.size = spec.general->size;
+        r.length_scale = spec.general->length_scale;
+        r.max_triangles = spec.general->max_triangles;
+        for (const auto& reg : spec.general->regions) r.regions.push_back(reg.name);
+        r.ignore = spec.general->ignore;
+        // Interface and reference names that are no group are checked later, against the mesh's sets.
+        r.sets = namedSets(spec);
+        r.quiet = quiet;
+        mesh = readRegionMesh(r);
+      } else if (spec.beam) {
         std::vector<double> xs;
         for (const auto& i : spec.interfaces) xs.push_back(i.position.x());
         mesh = meshBeam(spec.beam->length, spec.beam->elements, xs);
@@ -196,10 +325,12 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
   error.resize(static_cast<std::size_t>(len));
   MPI_Bcast(error.data(), static_cast<int>(len), MPI_CHAR, 0, comm);
   if (!error.empty()) {
+    if (spec.general) spec.general->file_node.fail(error);
     if (spec.shell) spec.shell->mesh_node.fail("meshing failed: " + error);
     throw std::runtime_error("meshing failed: " + error);
   }
   broadcastMesh(comm, mesh);
+  assignElementProperties(spec, mesh);
   return mesh;
 }
 
@@ -232,9 +363,12 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   const Mesh mesh = imported ? imported->mesh : meshBody(comm, spec, quiet);
   std::ostringstream mdesc;
   if (imported) mdesc << "(" << mesh.nodeCount() << " nodes, " << imported->source_dofs << " imported DOF)";
-  else
-  mdesc << "(" << mesh.nodeCount() << " nodes, "
-        << (spec.shell ? mesh.triangles.size() : mesh.beams.size()) << (spec.shell ? " triangles)" : " beam elements)");
+  else {
+    mdesc << "(" << mesh.nodeCount() << " nodes";
+    if (!mesh.triangles.empty()) mdesc << ", " << mesh.triangles.size() << " triangles";
+    if (!mesh.beams.empty()) mdesc << ", " << mesh.beams.size() << " beam elements";
+    mdesc << ")";
+  }
   pmesh.finish(mdesc.str());
   res.stages.push_back({"meshing", sw.seconds(), sw.cpu(), peakRssMb()});
 
@@ -318,8 +452,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   // --- assembly
   // The assembly's mesh: for an imported body its coupled node pairs are the "elements".
   const Mesh& amesh = imported ? imported->pairs : mesh;
+  // Each element with its own property and frame (mesh.h); point masses last.
   const long n_tri = static_cast<long>(amesh.triangles.size());
-  const long n_el = n_tri + static_cast<long>(amesh.beams.size());
+  const long n_beam = static_cast<long>(amesh.beams.size());
+  const long n_el = n_tri + n_beam + (imported ? 0L : static_cast<long>(mesh.point_masses.size()));
   ElementKernel kernel = [&](long e, ElementResult& out) {
     if (imported) {
       imported->pairMatrices(e, out);
@@ -327,20 +463,34 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
       Eigen::Matrix3d xyz;
       for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
+      const ShellProperty& p = mesh.shellProperty(e);
       const fe::ShellMatrices m =
-          fe::shellTriangle(xyz, spec.shell->laminate, spec.shell->kind, Eigen::Vector3d::UnitX());
+          fe::shellTriangle(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)]);
       out.nodes.assign(t.begin(), t.end());
       out.K = m.K;
       out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
       out.lumped = m.lumped;
-    } else {
-      const auto& b = mesh.beams[static_cast<std::size_t>(e - n_tri)];
+    } else if (e < n_tri + n_beam) {
+      const long k = e - n_tri;
+      const auto& b = mesh.beams[static_cast<std::size_t>(k)];
+      const BeamProperty& p = mesh.beamProperty(k);
       const fe::BeamMatrices m = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
-                                                    kSectionX2, spec.beam->Ks, spec.beam->Ms);
+                                                    mesh.beam_x2[static_cast<std::size_t>(k)], p.Ks, p.Ms);
       out.nodes.assign(b.begin(), b.end());
       out.K = m.K;
       out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
       out.lumped = m.lumped;
+    } else {
+      // A concentrated mass at its node: m on the translations, its inertia
+      // tensor (about the node) on the rotations, in full in both mass kinds;
+      // the lumped diagonal keeps the inertia's diagonal (/mass/nodal).
+      const PointMass& pm = mesh.point_masses[static_cast<std::size_t>(e - n_tri - n_beam)];
+      out.nodes = {pm.node};
+      out.K = Eigen::MatrixXd::Zero(6, 6);
+      out.M = Eigen::MatrixXd::Zero(6, 6);
+      out.M.topLeftCorner(3, 3).diagonal().setConstant(pm.mass);
+      out.M.bottomRightCorner(3, 3) = pm.inertia;
+      out.lumped = out.M.diagonal();
     }
   };
   Progress pasm("assembly", 1.0, quiet);
@@ -364,17 +514,8 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     const long n = mesh.nodeCount();
     Eigen::VectorXd m0(n);
     for (long k = 0; k < n; ++k) m0(k) = sys.lumped(6 * k);
-    RigidProperties mid;
-    if (spec.shell) {
-      LaminateStiffness midsurface = spec.shell->laminate;
-      midsurface.first_moment = 0.0;  // through-thickness terms belong to the rotary inertias
-      midsurface.rotary_per_area = 0.0;
-      mid = shellProperties(mesh, midsurface);
-    } else {
-      Matrix6d axis = Matrix6d::Zero();
-      axis(0, 0) = spec.beam->Ms(0, 0);
-      mid = beamProperties(mesh, axis, kSectionX2);
-    }
+    // Through-thickness and section terms belong to the rotary inertias.
+    const RigidProperties mid = meshProperties(mesh, true);
     const MomentLumping ml = momentConsistentMasses(mesh.nodes, m0, mid.mass, mid.first_moment, mid.second_moment);
     res.moment_lumping = ml.applied;
     if (!ml.applied && rank == 0)
@@ -544,6 +685,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     cb.K_lifts = Eigen::MatrixXd::Zero(6 * n, cb.lifts.cols());
     ElementResult er;
     for (long e = 0; e < n_el; ++e) {
+      if (e >= n_tri + n_beam) break;  // point masses: no stiffness
       const bool touches = e < n_tri ? std::any_of(amesh.triangles[static_cast<std::size_t>(e)].begin(), amesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
                                      : std::any_of(amesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), amesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
       if (!touches) continue;
@@ -638,12 +780,24 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     // The stress of the inertial loads is the static response of the held body.
     if (rigid.cols() > 0)
       spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
+    // The geometric stiffness kernels take one section: bodies of one shell
+    // property with one reference axis, or of one beam section with one x2.
+    auto uniform = [](const std::vector<Eigen::Vector3d>& v) {
+      return std::all_of(v.begin(), v.end(), [&](const Eigen::Vector3d& a) { return a == v.front(); });
+    };
+    if (mesh.shell_properties.size() + mesh.beam_properties.size() != 1 || !uniform(mesh.triangle_axis) ||
+        !uniform(mesh.beam_x2) || !mesh.point_masses.empty())
+      spec.geometric_stiffness_node.fail("geometric stiffness is computed for bodies of one shell or one beam "
+                                         "property with one material axis and no point masses; this body has " +
+                                         std::to_string(mesh.shell_properties.size() + mesh.beam_properties.size()) +
+                                         " properties");
     StressStiffnessModel model;
-    if (spec.beam) model.Ks = &spec.beam->Ks;
-    model.section_x2 = kSectionX2;
-    if (spec.shell) {
-      model.laminate = &spec.shell->laminate;
-      model.kind = spec.shell->kind;
+    if (!mesh.beam_properties.empty()) model.Ks = &mesh.beam_properties.front().Ks;
+    if (!mesh.beam_x2.empty()) model.section_x2 = mesh.beam_x2.front();
+    if (!mesh.shell_properties.empty()) {
+      model.laminate = &mesh.shell_properties.front().laminate;
+      model.kind = mesh.shell_properties.front().kind;
+      if (!mesh.triangle_axis.empty()) model.material_x = mesh.triangle_axis.front();
     }
     body.geometric_stiffness = modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, model, body.shapes);
     // Loads applied at the interfaces (joint reactions, force elements); an
@@ -689,10 +843,11 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.nodal_mass(i, 0) = sys.lumped.segment<3>(6 * i).mean();
     body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
   }
-  if (!imported) body.stress = stressRecoveryData(mesh, spec, body.shapes);
-  const RigidProperties rp = imported ? importedRigidProperties(*imported)
-                             : spec.shell ? shellProperties(mesh, spec.shell->laminate)
-                                          : beamProperties(mesh, spec.beam->Ms, kSectionX2);
+  std::string stress_note;
+  if (!imported) body.stress = stressRecoveryData(mesh, body.shapes, stress_note);
+  if (!stress_note.empty() && rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
+  const RigidProperties rp = imported ? importedRigidProperties(*imported) : meshProperties(mesh, false);
+  if (spec.general) res.regions = regionSummary(spec, mesh);
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
   // The exact continuum values go beside it when they differ (row-sum lumping,
   // a moment correction that could not be applied, an asymmetric laminate whose

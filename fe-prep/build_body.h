@@ -34,6 +34,9 @@ struct BuildResult {
   bool moment_lumping = false;
   double lumping_min_ratio = 1.0;
   std::vector<StageStats> stages;
+  // One line per shell or beam property: region, element count, mass, section
+  // and material axis (printed by fe-prep).
+  std::vector<std::string> regions;
 };
 
 struct BuildOptions {

@@ -98,9 +98,15 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& s, const E
       for (long k = 0; k < mesh.nodeCount(); ++k)
         if ((mesh.nodes.row(k).transpose() - projection).norm() <= s.within * (1 + 1e-12)) it.nodes.push_back(k);
       break;
-    case PatchSelect::Edge: {
+    case PatchSelect::Edge:
+    case PatchSelect::Set: {
       auto e = mesh.sets.find(s.edge);
-      if (e == mesh.sets.end() || e->second.empty()) s.nodes_node.fail("the mesh has no node set '" + s.edge + "'");
+      if (e == mesh.sets.end() || e->second.empty()) {
+        std::vector<std::string> known;
+        for (const auto& kv : mesh.sets) known.push_back(kv.first);
+        const std::string near = closestMatch(s.edge, known);
+        s.nodes_node.fail("the mesh has no node set '" + s.edge + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      }
       it.nodes = e->second;
       break;
     }

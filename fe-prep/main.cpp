@@ -20,12 +20,16 @@ namespace {
 void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResult& r, const std::string& out) {
   const auto& b = r.body;
   std::printf("fe-prep %s: body '%s' -> %s\n", fc::version(), b.name.c_str(), out.c_str());
+  std::string elements;
+  if (b.elements.count("triangles")) elements = std::to_string(b.elements.at("triangles").rows()) + " triangles";
+  if (b.elements.count("beams"))
+    elements += (elements.empty() ? "" : ", ") + std::to_string(b.elements.at("beams").rows()) + " beam elements";
   std::printf("  mesh: %ld nodes, %s; %ld DOF, %ld after the reference conditions, %ld rigid modes removed\n",
-              b.nodeCount(),
-              b.elements.count("triangles") ? (std::to_string(b.elements.at("triangles").rows()) + " triangles").c_str()
-              : b.elements.count("beams")   ? (std::to_string(b.elements.at("beams").rows()) + " beam elements").c_str()
-                                            : "imported matrices",
-              r.dofs, r.reduced_dofs, r.rigid_removed);
+              b.nodeCount(), elements.empty() ? "imported matrices" : elements.c_str(), r.dofs, r.reduced_dofs,
+              r.rigid_removed);
+  // Mesh-file bodies: what each region became.
+  if (spec.general)
+    for (const auto& line : r.regions) std::printf("  region %s\n", line.c_str());
   std::printf("  mass %.6g kg, centre of mass [%.6g, %.6g, %.6g] m\n", b.mass, b.center_of_mass.x(),
               b.center_of_mass.y(), b.center_of_mass.z());
   std::printf("  %-6s %14s\n", "mode", "frequency [Hz]");
@@ -40,7 +44,6 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
   if (!b.reduction.empty()) std::printf("  basis: %s\n", b.reduction.c_str());
   for (const auto& s : r.stages)
     std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)\n", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
-  (void)spec;
 }
 
 }  // namespace
