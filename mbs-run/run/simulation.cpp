@@ -224,6 +224,8 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       const bool projected = projectDrift(sys, t, y, tol.atol, hit.event != nullptr || stop);
       R.projections += projected;
       if (hit.event) {
+        if (!hit.event->lock.empty())  // a latch: its arrival rate before the lock acts (margins.h)
+          R.margins.latches.push_back(latchArrival(sys, model, hit.event->joint, hit.event->angle, t, y));
         applyEvent(sys, *hit.event, y);
         R.event_log.push_back(timeLabel(t) + " joint " + model.joints[hit.event->joint].name + " crossed " +
                               std::to_string(hit.event->angle) + ";" + describeEvent(model, *hit.event));
