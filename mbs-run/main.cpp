@@ -2,7 +2,9 @@
 #include <algorithm>
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <fstream>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "common/cli.h"
@@ -45,7 +47,24 @@ void printPeak(const char* what, const fc::mbs::RunSummary::Peak& p, const char*
   std::printf("  largest %s %.4g %s (%s, t = %.6g s)\n", what, p.value, unit, p.where.c_str(), p.time);
 }
 
-void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out) {
+// --seen-warnings: the warnings a set of runs has already shown, one per line.
+std::set<std::string> readSeenWarnings(const std::string& path) {
+  std::set<std::string> seen;
+  if (path.empty()) return seen;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) seen.insert(line);
+  return seen;
+}
+void addSeenWarnings(const std::string& path, const std::set<std::string>& seen, const std::vector<std::string>& now) {
+  if (path.empty()) return;
+  std::ofstream out(path, std::ios::app);  // a log of what was shown, not a result: appended, not atomic
+  for (const std::string& w : now)
+    if (!seen.count(w)) out << w << "\n";
+}
+
+void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out,
+                  const std::set<std::string>& seen_warnings) {
   const double t = r.t_reached;
   std::printf("mbs-run %s: %s -> %s\n", fc::version(), m.source.c_str(), out.c_str());
   std::printf("  status: %s (t = %.6g of %.6g s)\n", r.status.c_str(), t, m.settings.t_end);
@@ -115,12 +134,38 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
     std::printf("  largest beam section bending moment %.4g N m (body %s, element %ld, 0-based; t = %.6g s)\n",
                 r.peak_section_moment.value, r.peak_section_moment.body.c_str(), r.peak_section_moment.element,
                 r.peak_section_moment.time);
-  for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
+  for (const std::string& w : r.warnings)
+    if (!seen_warnings.count(w)) std::printf("  warning: %s\n", w.c_str());
   for (const std::string& e : r.event_log) std::printf("  event %s\n", e.c_str());
   for (std::size_t k = 0; k < m.distance_pairs.size() && k < r.smallest_distance.size(); ++k)
     std::printf("  distance %s-%s: smallest %.4g m at t = %.6g s\n", m.bodies[m.distance_pairs[k][0]].name.c_str(),
                 m.bodies[m.distance_pairs[k][1]].name.c_str(), r.smallest_distance[k].value,
                 r.smallest_distance[k].time);
+  // Margins (monitors/margins.h): the named beams against buckling, the named
+  // joints' peak reactions, every latch's arrival.
+  const fc::mbs::Margins& mg = r.margins;
+  for (std::size_t k = 0; k < m.margin_beams.size() && k < mg.beams.size(); ++k) {
+    const fc::mbs::BeamMarginSpec& b = m.margin_beams[k];
+    const double ratio = mg.beams[k].compression / b.euler_load;
+    std::printf("  margin %s: largest compression %.4g N at t = %.6g s, %.3g of its Euler load %.4g N (EI %.4g N m^2, "
+                "L %.4g m, %s ends, K %.3g); largest tension %.4g N at t = %.6g s%s\n",
+                m.bodies[b.body].name.c_str(), mg.beams[k].compression, mg.beams[k].compression_time, ratio,
+                b.euler_load, b.EI, b.length, b.ends.c_str(), b.K, mg.beams[k].tension, mg.beams[k].tension_time,
+                ratio >= 1.0 ? ": ABOVE THE EULER LOAD" : "");
+  }
+  for (int j : m.margin_joints) {
+    if (static_cast<std::size_t>(j) >= mg.joints.size()) continue;
+    const auto& p = mg.joints[static_cast<std::size_t>(j)];
+    if (m.joints[j].type == fc::mbs::JointType::Spherical)
+      std::printf("  margin joint %s: peak reaction force %.4g N at t = %.6g s\n", m.joints[j].name.c_str(), p.force,
+                  p.force_time);
+    else
+      std::printf("  margin joint %s: peak reaction force %.4g N at t = %.6g s, moment %.4g N m at t = %.6g s\n",
+                  m.joints[j].name.c_str(), p.force, p.force_time, p.moment, p.moment_time);
+  }
+  for (const auto& l : mg.latches)
+    std::printf("  latch %s: at t = %.10g s (angle %.6g rad), arriving at %.4g rad/s\n", m.joints[l.joint].name.c_str(),
+                l.time, l.angle, l.rate);
   for (const std::string& e : r.integrator_log) std::printf("  integrator %s\n", e.c_str());
 }
 
@@ -151,6 +196,10 @@ int main(int argc, char** argv) {
   app.add_option("--animation-every", animation_every, "write every N-th output time to the animation")
       ->check(CLI::PositiveNumber);
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  std::string seen_warnings;
+  app.add_option("--seen-warnings", seen_warnings,
+                 "a text file of warnings already shown (one per line): print only the others and add them to it, so "
+                 "a set of runs (a Makefile) shows each warning once; the results file keeps every warning");
   app.add_flag("--accept-inaccurate", accept_inaccurate,
                "exit 0 when the run ends with status 'inaccurate' (energy balance or constraint drift beyond what "
                "its tolerances allow; the results are written either way)");
@@ -187,8 +236,9 @@ int main(int argc, char** argv) {
     }
     if (!csv.empty()) fc::checkOutputIsNotAnInput(csv, {output});
     if (!animation.empty()) fc::mbs::prepareAnimationFolder(animation);  // fail before the run, not after
+    const std::set<std::string> seen = readSeenWarnings(seen_warnings);
     for (const std::string& w : fc::mbs::samplingWarnings(model))
-      std::fprintf(stderr, "mbs-run: warning: %s\n", w.c_str());
+      if (!seen.count(w)) std::fprintf(stderr, "mbs-run: warning: %s\n", w.c_str());
     const long expected_rows = static_cast<long>(model.settings.t_end / model.settings.output_step) + 2;
     fc::mbs::ResultsFileWriter file(output, model, expected_rows);
     std::unique_ptr<fc::mbs::CsvWriter> table;
@@ -199,7 +249,8 @@ int main(int argc, char** argv) {
     const fc::mbs::RunSummary r = fc::mbs::simulate(model, opt, sinks);
     file.finish(model, r, fc::sha256File(input));
     if (table) table->finish();
-    printSummary(model, r, output);
+    printSummary(model, r, output, seen);
+    addSeenWarnings(seen_warnings, seen, r.warnings);
     if (!animation.empty()) {
       const fc::mbs::AnimationSummary a = fc::mbs::writeAnimation(animation, input, model, output, animation_every);
       std::printf("  animation %s: %d frames of %d bodies (files in %s)\n", animation.c_str(), a.frames, a.bodies,

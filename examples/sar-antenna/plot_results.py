@@ -8,7 +8,7 @@ Each figure draws every run given, in order:
   fig9    panel 3 angular velocity about the hinge axis, phase 1 (rigid and flexible)
   fig12   actuator angle, phase 1              (paper: isotropic and lay-up 2)
   fig13   actuator angle, phase 1              (paper: lay-up 1 and lay-up 2)
-  phase2  R1, R3 angles and panel angular velocities over the whole run (first run only)
+  phase2  R1, R3 angles and panel 2's angular velocity over the whole run, every run on one figure
   twist   torsion of panel 3 (needs --body LABEL=panel3.h5 for each flexible run)
 and a summary table of every run is printed (alignment time, oscillation after it,
 impacts on the hinge-2/3 stop, smallest truss-panel distance).
@@ -151,18 +151,19 @@ def omega_figure(runs, outdir):
     return finish(fig, ax, outdir, "fig9", "phase 1: " + FILES["fig9"][1])
 
 
-def phase2_figure(run, outdir):
+def phase2_figure(runs, outdir):
+    """Both phases of every run: R1 (actuator B) and R3 (actuator A) above, panel 2's rate below."""
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.4, 6.0), sharex=True)
-    ax1.plot(run.t, run.r1, label="R1 (actuator B)")
-    ax1.plot(run.t, run.r3, label="R3 (actuator A)")
+    for i, run in enumerate(runs):
+        ax1.plot(run.t, run.r1, color=f"C{i}", label=f"{run.label}: R1 (actuator B)")
+        ax1.plot(run.t, run.r3, color=f"C{i}", ls="--", lw=0.8, label=f"{run.label}: R3 (actuator A)")
+        ax2.plot(run.t, run.w2, color=f"C{i}", lw=0.8, label=run.label)
     ax1.set_ylabel("joint angle [rad]")
-    ax1.legend(fontsize=8)
+    ax1.legend(fontsize=7)
     ax1.grid(alpha=0.3)
-    ax2.plot(run.t, run.w2, label="panel 2")
-    ax2.plot(run.t, run.w3, label="panel 3")
     ax2.set_xlabel("time [s]")
-    ax2.set_ylabel("angular velocity about Y [rad/s]")
-    return finish(fig, ax2, outdir, "phase2", f"{run.label}, phases 1 and 2 ({run.status})")
+    ax2.set_ylabel("panel 2 angular velocity about Y [rad/s]")
+    return finish(fig, ax2, outdir, "phase2", "phases 1 and 2: " + ", ".join(r.label for r in runs))
 
 
 def twist_figure(runs, bodies, outdir):
@@ -238,7 +239,7 @@ def main():
         elif name == "fig9":
             path = omega_figure(runs, outdir)
         elif name == "phase2":
-            path = phase2_figure(runs[0], outdir)
+            path = phase2_figure(runs, outdir)
         else:
             path = twist_figure(runs, bodies, outdir)
         print(f"wrote {path}")

@@ -204,6 +204,18 @@ struct Settings {
 // gives none (the one place this default is written).
 double absoluteTolerance(const Settings& st);
 
+// `outputs: {margins: {beams: [...]}}`: a member whose axial compression is
+// checked against its Euler load (monitors/margins.h).
+struct BeamMarginSpec {
+  int body = -1;
+  int joint_a = -1, joint_b = -1;  // the joints at its two ends
+  double EI = 0.0;                 // bending stiffness of the weaker axis [N m^2], as stated in the scene
+  double length = 0.0;             // between the two joints' points [m]
+  std::string ends;                // end conditions: pinned, fixed, fixed_pinned, fixed_free
+  double K = 1.0;                  // effective-length factor of `ends`
+  double euler_load = 0.0;         // pi^2 EI / (K L)^2 [N]
+};
+
 struct Model {
   std::vector<Body> bodies;
   std::vector<Joint> joints;
@@ -215,6 +227,10 @@ struct Model {
   // row (and the last) with their own /stress_time; 0 when the key is absent
   // (every row, no /stress_time). The envelope takes every row either way.
   int stress_every = 0;
+  // `outputs: {margins: ...}`: beams checked against buckling, and the joints
+  // whose peak reactions the summary prints (every joint's are written).
+  std::vector<BeamMarginSpec> margin_beams;
+  std::vector<int> margin_joints;
   Settings settings;
   int nq = 0, nv = 0;  // 7 + modes and 6 + modes per free body
   std::string source;  // scene file, for messages

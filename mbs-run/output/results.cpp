@@ -321,6 +321,73 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     f.setAttribute("/" + distanceChannel(model, k), "minimum", r.smallest_distance[k].value);
     f.setAttribute("/" + distanceChannel(model, k), "time_of_minimum", r.smallest_distance[k].time);
   }
+  // Margins (monitors/margins.h, docs/file-formats.md "Margins"): each joint's
+  // peak reactions as attributes of its reaction datasets, each named beam's
+  // axial compression against its Euler load, the latches' arrivals, and the
+  // smallest of each over the run as root attributes.
+  const Margins& mg = r.margins;
+  for (std::size_t j = 0; j < model.joints.size() && j < mg.joints.size(); ++j) {
+    const std::string p = "/joints/" + model.joints[j].name;
+    f.setAttribute(p + "/reaction_force", "peak", mg.joints[j].force);
+    f.setAttribute(p + "/reaction_force", "peak_time", mg.joints[j].force_time);
+    if (model.joints[j].type != JointType::Spherical) {
+      f.setAttribute(p + "/reaction_torque", "peak", mg.joints[j].moment);
+      f.setAttribute(p + "/reaction_torque", "peak_time", mg.joints[j].moment_time);
+    }
+  }
+  for (std::size_t k = 0; k < model.margin_beams.size() && k < mg.beams.size(); ++k) {
+    const BeamMarginSpec& b = model.margin_beams[k];
+    const std::string p = "/margins/beams/" + model.bodies[static_cast<std::size_t>(b.body)].name;
+    const auto& c = mg.beams[k].axial_compression;
+    f.writeVector(p + "/axial_compression", Eigen::Map<const Eigen::VectorXd>(c.data(), Eigen::Index(c.size())));
+    const std::string d = p + "/axial_compression";
+    f.setAttribute(d, "units", std::string("N"));
+    f.setAttribute(d, "EI", b.EI);
+    f.setAttribute(d, "length", b.length);
+    f.setAttribute(d, "ends", b.ends);
+    f.setAttribute(d, "K", b.K);
+    f.setAttribute(d, "euler_load", b.euler_load);
+    f.setAttribute(d, "joints", model.joints[static_cast<std::size_t>(b.joint_a)].name + " " +
+                                    model.joints[static_cast<std::size_t>(b.joint_b)].name);
+    f.setAttribute(d, "max_compression", mg.beams[k].compression);
+    f.setAttribute(d, "max_compression_time", mg.beams[k].compression_time);
+    f.setAttribute(d, "max_tension", mg.beams[k].tension);
+    f.setAttribute(d, "max_tension_time", mg.beams[k].tension_time);
+    f.setAttribute(d, "buckling_ratio", mg.beams[k].compression / b.euler_load);
+  }
+  if (!model.margin_beams.empty()) {
+    int worst = -1;
+    const double ratio = mg.largestBucklingRatio(model, &worst);
+    f.setAttribute("/", "buckling_ratio_max", ratio);
+    f.setAttribute("/", "buckling_ratio_max_body",
+                   model.bodies[static_cast<std::size_t>(model.margin_beams[static_cast<std::size_t>(worst)].body)].name);
+  }
+  {
+    Eigen::MatrixXd l(mg.latches.size(), 3);
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < mg.latches.size(); ++k) {
+      l(Eigen::Index(k), 0) = mg.latches[k].time;
+      l(Eigen::Index(k), 1) = mg.latches[k].angle;
+      l(Eigen::Index(k), 2) = mg.latches[k].rate;
+      const std::string& jn = model.joints[static_cast<std::size_t>(mg.latches[k].joint)].name;
+      names.push_back(jn);
+      f.setAttribute("/joints/" + jn + "/angle", "latch_time", mg.latches[k].time);
+      f.setAttribute("/joints/" + jn + "/angle", "latch_rate", mg.latches[k].rate);
+    }
+    f.writeMatrix("/margins/latches", l);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : " ") + n;
+    f.setAttribute("/margins/latches", "joints", list);
+    f.setAttribute("/margins/latches", "columns", std::string("time [s], angle [rad], arrival rate [rad/s]"));
+  }
+  if (!model.distance_pairs.empty() && !r.smallest_distance.empty()) {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < r.smallest_distance.size(); ++k)
+      if (r.smallest_distance[k].value < r.smallest_distance[best].value) best = k;
+    f.setAttribute("/", "clearance_min", r.smallest_distance[best].value);
+    f.setAttribute("/", "clearance_min_time", r.smallest_distance[best].time);
+    f.setAttribute("/", "clearance_min_pair", distanceChannel(model, best).substr(std::string("distances/").size()));
+  }
   f.setAttribute("/", "cpu_seconds", r.cpu_seconds);
   f.setAttribute("/", "steps", r.steps);
   f.setAttribute("/", "rejected_steps", r.rejected_steps);

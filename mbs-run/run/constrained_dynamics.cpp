@@ -102,6 +102,8 @@ class ConstrainedDynamics : public Dynamics {
 
   bool applyLocatedEvent(double t, VectorXd& y, double step, std::vector<std::string>& log) override {
     if (hit_.event) {
+      if (!hit_.event->lock.empty())  // a latch: its arrival rate before the lock acts (margins.h)
+        latches_.push_back(latchArrival(sys_, m_, hit_.event->joint, hit_.event->angle, t, y));
       applyEvent(sys_, *hit_.event, y);
       log.push_back(timeLabel(t) + " joint " + m_.joints[hit_.event->joint].name + " crossed " +
                     std::to_string(hit_.event->angle) + ";" + describeEvent(m_, *hit_.event));
@@ -128,6 +130,7 @@ class ConstrainedDynamics : public Dynamics {
   std::vector<std::vector<std::array<double, 5>>> limitImpacts() const override {
     return stops_ ? stops_->impacts() : std::vector<std::vector<std::array<double, 5>>>{};
   }
+  std::vector<Margins::Latch> latches() const override { return latches_; }
 
  private:
   const Model& m_;
@@ -138,6 +141,7 @@ class ConstrainedDynamics : public Dynamics {
   std::optional<StopMonitor> stops_;
   double atol_ = 0.0;
   CrossingEvents::Hit hit_;
+  std::vector<Margins::Latch> latches_;
   std::optional<StopEvent> stop_;
   double last_stop_time_ = -1.0;
   int same_time_stops_ = 0;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mbs-run/integrators/integrator.h"
+#include "mbs-run/monitors/margins.h"
 #include "mbs-run/run/sampling.h"
 
 namespace fc::mbs {
@@ -61,6 +62,8 @@ class Dynamics {
   virtual int maxAlIterations() const { return 0; }
   // Impacts on the stops, per joint (joint_limits.h).
   virtual std::vector<std::vector<std::array<double, 5>>> limitImpacts() const { return {}; }
+  // Each latch's arrival (time, rate) before its lock acted (margins.h).
+  virtual std::vector<Margins::Latch> latches() const { return {}; }
 };
 
 }  // namespace fc::mbs

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mbs-run/run/sampling.h"
+#include "mbs-run/monitors/margins.h"
 #include "mbs-run/monitors/stress_envelope.h"
 
 namespace fc::mbs {
@@ -74,6 +75,8 @@ struct RunSummary {
   std::vector<StressEnvelope> stress_envelopes;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
+  // Buckling of the named beams, every joint's peak reactions, the latches (margins.h).
+  Margins margins;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes
 
   // Folds one output row into the statistics (joint and body names from the model).

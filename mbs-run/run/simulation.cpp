@@ -146,6 +146,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   progress.finish();
   R.t_reached = t;
   R.limit_impacts = dyn->limitImpacts();
+  R.margins.latches = dyn->latches();
   R.steps = methods.steps();
   R.rejected_steps = methods.rejected();
   R.evaluations = dyn->evaluations();

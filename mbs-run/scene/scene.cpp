@@ -7,6 +7,7 @@
 
 #include "common/rotations.h"
 #include "mbs-run/monitors/bounding_volume_tree.h"
+#include "mbs-run/monitors/margins.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
@@ -586,8 +587,80 @@ void parseStresses(const InputNode& list, Model& m) {
   }
 }
 
+int jointRef(const Model& m, const InputNode& n) {
+  const std::string name = n.asString();
+  const int k = m.jointIndex(name);
+  if (k < 0) {
+    std::vector<std::string> names;
+    for (const Joint& j : m.joints) names.push_back(j.name);
+    const std::string hint = closestMatch(name, names);
+    n.fail("unknown joint '" + name + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  }
+  return k;
+}
+
+// outputs.margins (monitors/margins.h, docs/mbs-run.md "Margins"):
+//   beams: [{body: B11, EI: 10.12, ends: pinned, joints: [S5, S2]}, ...]
+//   joints: [R1, H23, ...]   (printed in the summary; every joint's peaks are written)
+void parseMargins(const InputNode& mg, Model& m) {
+  mg.allowKeys({"beams", "joints"});
+  if (mg.has("beams")) {
+    const InputNode list = mg["beams"];
+    if (!list.isSequence()) list.fail("expected a list of {body: NAME, EI: N m^2, ends: pinned, joints: [A, B]}");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const InputNode b = list.at(k);
+      b.allowKeys({"body", "EI", "ends", "joints", "length"});
+      BeamMarginSpec spec;
+      spec.body = bodyRef(m, b["body"]);
+      const std::string& name = m.bodies[static_cast<std::size_t>(spec.body)].name;
+      spec.EI = b["EI"].asDouble();
+      if (!(spec.EI > 0)) b["EI"].fail("expected the bending stiffness EI of the weaker axis in N m^2 (> 0)");
+      spec.ends = b.has("ends") ? b["ends"].asString() : "pinned";
+      spec.K = effectiveLengthFactor(spec.ends);
+      if (spec.K <= 0) b["ends"].fail("expected pinned, fixed, fixed_pinned or fixed_free, got '" + spec.ends + "'");
+      std::vector<int> on;  // joints attached to the body
+      if (b.has("joints")) {
+        const InputNode jl = b["joints"];
+        if (!jl.isSequence() || jl.size() != 2) jl.fail("expected the two joints at the member's ends, [A, B]");
+        for (std::size_t i = 0; i < 2; ++i) {
+          const int j = jointRef(m, jl.at(i));
+          const Joint& jt = m.joints[static_cast<std::size_t>(j)];
+          if (jt.body_i != spec.body && jt.body_j != spec.body)
+            jl.at(i).fail("joint '" + jt.name + "' does not connect body '" + name + "'");
+          on.push_back(j);
+        }
+        if (on[0] == on[1]) jl.fail("expected two different joints");
+      } else {
+        for (std::size_t j = 0; j < m.joints.size(); ++j)
+          if (m.joints[j].body_i == spec.body || m.joints[j].body_j == spec.body) on.push_back(static_cast<int>(j));
+        if (on.size() != 2)
+          b["body"].fail("body '" + name + "' has " + std::to_string(on.size()) +
+                         " joints: name the two at its ends with `joints: [A, B]`");
+      }
+      spec.joint_a = on[0];
+      spec.joint_b = on[1];
+      const Joint& ja = m.joints[static_cast<std::size_t>(on[0])];
+      const Joint& jb = m.joints[static_cast<std::size_t>(on[1])];
+      const Eigen::Vector3d pa = ja.body_i == spec.body ? ja.point_i : ja.point_j;
+      const Eigen::Vector3d pb = jb.body_i == spec.body ? jb.point_i : jb.point_j;
+      spec.length = b.has("length") ? b["length"].asDouble() : (pb - pa).norm();
+      if (!(spec.length > 0)) b.fail("the member's length is 0: give `length:` in m");
+      spec.euler_load = eulerLoad(spec.EI, spec.length, spec.K);
+      for (const BeamMarginSpec& o : m.margin_beams)
+        if (o.body == spec.body) b["body"].fail("body '" + name + "' is named twice");
+      m.margin_beams.push_back(spec);
+    }
+  }
+  if (mg.has("joints")) {
+    const InputNode jl = mg["joints"];
+    if (!jl.isSequence()) jl.fail("expected a list of joint names");
+    for (std::size_t k = 0; k < jl.size(); ++k) m.margin_joints.push_back(jointRef(m, jl.at(k)));
+  }
+}
+
 void parseOutputs(const InputNode& o, Model& m) {
-  o.allowKeys({"distances", "stresses", "stress_every"});
+  o.allowKeys({"distances", "stresses", "stress_every", "margins"});
+  if (o.has("margins")) parseMargins(o["margins"], m);
   if (o.has("stresses")) parseStresses(o["stresses"], m);
   if (o.has("stress_every")) {
     // Decimates the full stress fields only (docs/stresses.md); the bound keeps

@@ -4,7 +4,7 @@
 Copies the example, then asks its own Makefile for out/results/sar-isotropic-cb.h5:
 sections, trusses, the two rebuilt isotropic panels (cb_model.py with the accuracy
 study's generator, element size CB_H, CB_MODES fixed-interface modes), the derived
-scene and the whole 20-s run, exactly as `make` does (the lay-up runs and figures
+scene and the whole 30-s run (reconstruction v3.1, with hold-down E and snubbers), exactly as `make` does (the lay-up runs and figures
 are left out to keep CI short). Checked:
 
 - it is the rebuilt model: the scene keeps every mode of the panel files (`modes:
@@ -21,7 +21,15 @@ are left out to keep CI short). Checked:
   2.4e-4 rad with footprints at the plain mesh size, measured 2.45e-4; with the footprint
   cap 2.3e-4, measured 2.34e-4); measured 1.02e-4 rad;
 - what the example shows: the knee reaches its minimum, panel 3 hits the hinge-2/3
-  stop and comes to rest on it, and the contact monitor reports every pair.
+  stop and comes to rest on it, the hinge-2/3 latch catches it, the cluster deploys
+  (the R1 latch, within 10 % of the rigid model's 15.02-s phase 2, at below 0.3 rad/s:
+  the model file's flexible latches arrive at 0.10-0.13 rad/s), and the contact monitor
+  reports every pair;
+- no body through another (docs/sar-antenna.md, "Hold-down E and snubbers"): panel 2
+  stays clear of panel 1 (B2-B1 above 0.05 m in phase 1, stowed 0.141 m; above 0 in
+  phase 2 until 0.2 s before the R1 latch, when the mid-plane rectangles meet at the
+  hinge line);
+- the margins are written (docs/file-formats.md): the legs' axial force and Euler load.
 """
 import csv
 import os
@@ -75,11 +83,34 @@ with h5py.File(res, "r") as f:
     imp = f["joints/H23/limit_impacts"][()]
     events = str(attr(f, "events"))
     distances = {k: f["distances"][k][()] for k in f["distances"]}
+    latches = f["margins/latches"][()]
+    latched = f["margins/latches"].attrs["joints"]
+    latched = (latched.decode() if isinstance(latched, bytes) else str(latched)).split()
+    legs = {b: (f[f"margins/beams/{b}/axial_compression"][()], float(f[f"margins/beams/{b}/axial_compression"].attrs["euler_load"]))
+            for b in ("B11", "B12")}
 check(status == "completed", f"status {status}")
 check(balance < 1e-5 * largest, f"energy balance error {balance:.2e} J of {largest:.3g} J")
 check(violation < 1e-6, f"largest constraint violation {violation:.2e}")
 
-# Accuracy against the finer model (phase 1, before the toggle).
+# Accuracy against the finer model (phase 1, before the toggle). The reference was computed without the
+# hold-down E (reconstruction v2/v3 paths agree in phase 1 up to the toggle), which changes phase 1 by
+# 0.067 rad at 6.1 s: the mesh's documented error is checked on the same scene without E1 and E2, phase 1
+# only (a variant of the made scene, the same body files), until the reference is recomputed with E.
+acc_scene = dict(scene)
+acc_scene["joints"] = [j for j in scene["joints"] if j["name"] not in ("E1", "E2")]
+acc_scene["events"] = [dict(e, disable=[n for n in e["disable"] if n not in ("E1", "E2")]) if "disable" in e else e
+                       for e in scene["events"]]
+acc_scene.pop("outputs", None)
+acc_scene["simulation"] = dict(scene["simulation"], t_end=6.5)
+acc_path = os.path.join(work, "out", "scenes", "sar-isotropic-cb-noE.yaml")
+with open(acc_path, "w") as fh:
+    yaml.safe_dump(acc_scene, fh, default_flow_style=None, sort_keys=False)
+acc_res = os.path.join(work, "out", "results", "sar-isotropic-cb-noE.h5")
+subprocess.run([os.path.join(build, "mbs-run", "mbs-run"), acc_path, "-o", acc_res, "-q"], env=env, check=True,
+               stdout=subprocess.DEVNULL)
+with h5py.File(acc_res, "r") as f:
+    t_acc = f["time"][()]
+    r3_acc = f["joints/R3/angle"][()]
 ref_t, ref_r3 = [], []
 with open(os.path.join(data, "sar-cb-h0.0125-r3.csv")) as fh:
     for row in csv.reader(line for line in fh if not line.startswith("#")):
@@ -88,8 +119,8 @@ with open(os.path.join(data, "sar-cb-h0.0125-r3.csv")) as fh:
             ref_r3.append(float(row[1]))
 ref_t, ref_r3 = np.array(ref_t), np.array(ref_r3)
 t_cut = ref_t[np.argmax(ref_r3 < 0.1)]  # docs/accuracy-cb.md's window: R3 first falls to 0.1 rad
-window = (t <= t_cut + 1e-9) & (t >= ref_t[0] - 1e-9)
-err = np.abs(r3[window] - np.interp(t[window], ref_t, ref_r3))
+window = (t_acc <= t_cut + 1e-9) & (t_acc >= ref_t[0] - 1e-9)
+err = np.abs(r3_acc[window] - np.interp(t_acc[window], ref_t, ref_r3))
 check(window.sum() > 500, f"{window.sum()} output rows before the toggle window's end ({t_cut:.2f} s)")
 check(err.max() < 3e-4, f"R3 within {err.max():.2e} rad of the finer model up to {t_cut:.2f} s "
       f"(documented: 1.0e-4 rad)")
@@ -103,4 +134,21 @@ check(1 <= len(imp) <= 10, f"{len(imp)} impacts on the hinge-2/3 stop")
 check(re.search(r"joint H23 hits its min stop[^\n]*rests on it", events) is not None, "H23 comes to rest on its stop")
 check(len(distances) == len(scene["outputs"]["distances"]) and all(np.all(v >= 0) for v in distances.values()),
       f"contact monitor: {len(distances)} pairs")
+check(re.search(r"joint H23 crossed 0\.010*; lock H23", events) is not None, "the hinge-2/3 latch catches panel 3")
+check("R1" in latched, f"the cluster deploys: latches {latched}")
+if "R1" in latched:
+    t_latch, _, rate = latches[latched.index("R1")]
+    check(abs((t_latch - 10.0) / 15.02 - 1.0) < 0.10, f"phase 2 takes {t_latch - 10.0:.2f} s (rigid 15.02 s)")
+    check(0.0 < rate < 0.3, f"R1 latches at {rate:.3f} rad/s")
+    d21 = distances["B2-B1"]
+    p1 = t <= 10.0
+    p2 = (t > 10.0) & (t < t_latch - 0.2)
+    check(d21[p1].min() > 0.05, f"panel 2 - panel 1 phase 1: smallest {d21[p1].min():.4f} m")
+    check(d21[p2].min() > 0.0, f"panel 2 - panel 1 phase 2: smallest {d21[p2].min():.4f} m")
+    print(f"default model: R1 latch at {t_latch:.3f} s at {rate:.3f} rad/s; panel 2 - panel 1 clearance "
+          f"{d21[p1].min():.4f} m (phase 1), {d21[p2].min():.4f} m (phase 2)")
+for b, (c, euler) in legs.items():
+    check(len(c) == len(t) and abs(euler - 64.93) < 0.05, f"{b}: axial force history and Euler load {euler:.2f} N")
+    print(f"default model: leg {b} largest compression {c[t <= 10.0].max():.1f} N (phase 1), "
+          f"{c[t > 10.0].max():.1f} N (phase 2), Euler load {euler:.1f} N")
 finish()

@@ -55,7 +55,17 @@ targets = [f"out/bodies/{b}.h5" for b in ["panel2_iso", "panel3_iso"] + trusses]
 subprocess.run(["make", "-C", work, "--no-print-directory", f"BUILD={build}"] + targets, env=env, check=True,
                stdout=subprocess.DEVNULL)
 
-scene = yaml.safe_load(open(os.path.join(work, "sar-isotropic.yaml")))
+def phase1_as_measured(scene):
+    """The example's scene as these figures were measured (reconstruction v2's phase 1): without the hold-down
+    E1/E2, the snubber stop H12 and the latch events that v3 and issue 30 added (docs/sar-antenna.md). The rest
+    rule is what is checked here; the hold-down changes phase 1's path, the latch acts only after the release."""
+    scene["joints"] = [j for j in scene["joints"] if j["name"] not in ("E1", "E2", "H12")]
+    scene["events"] = [dict(e, disable=[n for n in e["disable"] if n not in ("E1", "E2")]) if "disable" in e else e
+                       for e in scene["events"] if "time" in e]
+    return scene
+
+
+scene = phase1_as_measured(yaml.safe_load(open(os.path.join(work, "sar-isotropic.yaml"))))
 for b in scene["bodies"]:
     if "flexible" in b:
         b["flexible"]["modes"] = 4 if b["name"] in ("B2", "B3") else 0
@@ -117,7 +127,7 @@ for panel in ("panel2_iso", "panel3_iso"):
 
 def run_paper_model(name, stop):
     """study.py's base run: its panel files on 14 modes, 2 truss modes, phase 1 at rtol 1e-6."""
-    paper = yaml.safe_load(open(os.path.join(work, "sar-isotropic.yaml")))
+    paper = phase1_as_measured(yaml.safe_load(open(os.path.join(work, "sar-isotropic.yaml"))))
     for b in paper["bodies"]:
         if b["name"] in ("B2", "B3"):
             b["flexible"]["file"] = b["flexible"]["file"][:-3] + "_m40.h5"
