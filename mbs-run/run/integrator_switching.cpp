@@ -1,6 +1,9 @@
 #include "mbs-run/run/integrator_switching.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "mbs-run/run/run_summary.h"
 #include "mbs-run/run/switch_trial.h"
@@ -43,7 +46,8 @@ IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, StiffP
 }
 
 void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
-  declined_ = false;  // new dynamics: a new trial may switch
+  declines_ = 0;  // new dynamics: a new trial may switch at once
+  retry_at_ = -std::numeric_limits<double>::infinity();
   if (settings_.switch_when_stiff && explicit_ && current_ != explicit_.get()) {
     current_ = explicit_.get();
     log.push_back(timeLabel(t) + " dopri5 (event)");
@@ -54,21 +58,32 @@ void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, 
 bool IntegratorSwitching::switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
   if (!settings_.switch_when_stiff || current_ != explicit_.get()) return false;
   const double lambda = current_->stiffness();
-  if (declined_ || !(lambda > settings_.stiff_frequency)) return false;
+  if (t < retry_at_ || !(lambda > settings_.stiff_frequency)) return false;
   // Measured choice (switch_trial.h): both methods over the next
   // kTrialSteps explicit steps; stay explicit for the rest of the segment
   // unless the implicit candidate is cheaper and as accurate.
   const double h = current_->t() - current_->tPrevious();
   // The candidate: IMEX where there are modes (their stiffness is what it
   // treats implicitly, with a structured solve), else TR-BDF2.
-  const bool has_modes = stiff_ && stiff_(t, y).modes() > 0;
+  const StiffModalPart split = stiff_ ? stiff_(t, y) : StiffModalPart{};
+  const bool has_modes = split.modes() > 0;
+  // Modal rates compared as the amplitudes they carry (trialImplicit).
+  Eigen::VectorXd rate_scale = Eigen::VectorXd::Ones(y.size());
+  for (int j = 0; j < split.modes(); ++j)
+    rate_scale[split.v_index[j]] = 1.0 / std::max(1.0, std::sqrt(std::max(split.stiffness[j], 0.0)));
   const StiffPart stiff = stiff_;
   const MethodFactory candidate = [&](Rhs counted) {
     return has_modes ? makeImex(counted, stiff, tol_) : makeTrBdf2(counted, tol_);
   };
-  const SwitchTrial trial = trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h);
+  const SwitchTrial trial = trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h, rate_scale);
   if (!trial.implicit_better) {
-    declined_ = true;
+    // Tried again after 2^k windows (k the declines so far in the segment):
+    // a disagreement often comes from a transient (high modes ringing after
+    // a release or an impact, which the L-stable candidate damps at once and
+    // the physical damping within tens of milliseconds), not from the
+    // dynamics; the doubling keeps the trials' cost within log2 of the run's
+    // windows.
+    retry_at_ = t + kTrialSteps * h * std::ldexp(1.0, ++declines_);
     log.push_back(timeLabel(t) + " dopri5 kept: " + trial.describe());
     return false;
   }

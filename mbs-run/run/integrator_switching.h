@@ -8,6 +8,7 @@
 // an event changes the dynamics, so the next segment starts explicit again.
 #include <Eigen/Dense>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,8 +38,8 @@ class IntegratorSwitching {
   // After an accepted step: when auto's Dormand-Prince is held at its
   // stability boundary above the stiff frequency, a trial of both methods
   // (switch_trial.h) decides; it moves to the implicit candidate only if that
-  // is cheaper and as accurate, and otherwise keeps dopri5 until the next
-  // event. True if it switched.
+  // is cheaper and as accurate, and otherwise keeps dopri5 for twice as long
+  // as before the last trial (from one window on) before trying again. True if it switched.
   bool switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log);
   long steps() const;
   long rejected() const;
@@ -51,7 +52,8 @@ class IntegratorSwitching {
   std::unique_ptr<Integrator> explicit_, implicit_;
   Integrator* current_ = nullptr;
   std::string label_;
-  bool declined_ = false;  // a trial kept dopri5 for the rest of this segment
+  int declines_ = 0;  // trials that kept dopri5 in this segment
+  double retry_at_ = -std::numeric_limits<double>::infinity();  // no trial before
 };
 
 // Length of auto's switch trial in Dormand-Prince steps (switch_trial.h).

@@ -17,7 +17,7 @@ std::string SwitchTrial::describe() const {
 }
 
 SwitchTrial trialImplicit(const Rhs& f, const MethodFactory& candidate, const Tolerances& tol, double t,
-                          const Eigen::VectorXd& y, double window) {
+                          const Eigen::VectorXd& y, double window, const Eigen::VectorXd& rate_scale) {
   SwitchTrial r;
   r.window = window;
   long count = 0;
@@ -44,7 +44,12 @@ SwitchTrial trialImplicit(const Rhs& f, const MethodFactory& candidate, const To
   r.candidate = implicit->name();
   const Eigen::VectorXd yi = run(std::move(implicit), r.implicit_evaluations, r.implicit_cpu, r.implicit_ok);
   if (!r.explicit_ok || !r.implicit_ok) return r;
-  r.difference = weightedRmsNorm(yi - ye, ye, yi, tol);
+  if (rate_scale.size() == y.size()) {
+    const Eigen::VectorXd se = ye.cwiseProduct(rate_scale), si = yi.cwiseProduct(rate_scale);
+    r.difference = weightedRmsNorm(si - se, se, si, tol);
+  } else {
+    r.difference = weightedRmsNorm(yi - ye, ye, yi, tol);
+  }
   r.implicit_better = r.implicit_cpu < kTrialCostRatio * r.explicit_cpu &&
                       r.difference <= kTrialAgree;
   return r;

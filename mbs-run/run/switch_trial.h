@@ -41,7 +41,14 @@ constexpr double kTrialAgree = 10.0;
 // The candidate implicit method, built on the evaluation-counting f it is given.
 using MethodFactory = std::function<std::unique_ptr<Integrator>(Rhs)>;
 
+// rate_scale: per state component, the factor its difference and values are
+// measured with (empty: all 1). For a modal rate it is 1 / omega_j: the end
+// states are compared in each mode's amplitude sqrt(dq^2 + (dqdot/omega)^2),
+// its energy norm, not in its rate, where a 14 kHz mode ringing at 1e-10 m
+// (the release's transient, which the L-stable candidate damps at once and
+// the physical damping within milliseconds) weighs 9e4 times its amplitude
+// and 50-100 tolerance units (docs/mbs-run.md, "Projections and stiff modes").
 SwitchTrial trialImplicit(const Rhs& f, const MethodFactory& candidate, const Tolerances& tol, double t,
-                          const Eigen::VectorXd& y, double window);
+                          const Eigen::VectorXd& y, double window, const Eigen::VectorXd& rate_scale = {});
 
 }  // namespace fc::mbs
