@@ -201,7 +201,10 @@ BodySpec parseBodySpec(const InputNode& root) {
     for (const auto& key : in.keys()) {
       const InputNode entry = in[key];
       const InputNode p = entry.isMap() ? entry["point"] : entry;
-      InterfaceSpec i{key, p.asVector(3), entry};
+      InterfaceSpec i;
+      i.name = key;
+      i.position = p.asVector(3);
+      i.node = entry;
       // Bodies are far smaller than a kilometre: 1.7e308 made the shapes infinite.
       if (i.position.cwiseAbs().maxCoeff() > 1e3)
         p.fail("expected coordinates within 1000 m of the body's origin (SI units)");
