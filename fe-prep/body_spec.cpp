@@ -86,6 +86,10 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
   if (mesh.has("file")) {
     if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
     shell.rectangle = false;
+    // The mesh file's coordinates are metres: `units:` converts this file's numbers only.
+    if (mesh.units())
+      mesh["file"].fail("a shell mesh file is read in metres; with units: " + mesh.units()->name +
+                        " its coordinates would be taken as metres (write the mesh in metres, or this file in m-kg-s)");
     shell.geo_file = resolveRelativeTo(s.file(), mesh["file"].asString());
     try {
       if (readTextFile(shell.geo_file).empty()) mesh["file"].fail("mesh file '" + shell.geo_file + "' is empty");
@@ -173,7 +177,7 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
 }  // namespace
 
 BodySpec parseBodySpec(const InputNode& root) {
-  root.allowKeys({"materials", "laminates", "body"});
+  root.allowKeys({"units", "materials", "laminates", "body"});
   BodySpec spec;
   MaterialLibrary materials;
   LaminateLibrary laminates;
