@@ -1,5 +1,6 @@
 #include "common/cli.h"
 
+#include <filesystem>
 #include <iostream>
 
 #include "common/termination.h"
@@ -46,6 +47,27 @@ void addInspectOption(CLI::App& app, const std::string& tool) {
          },
          "print what a flexcomp HDF5 file (section, body or results) holds, and exit")
       ->trigger_on_parse();
+}
+
+}  // namespace fc
+
+namespace fc {
+
+std::string inputReferencePath() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path().parent_path() / "share/doc/flexcomp/input-reference.md";
+    if (fs::exists(installed, ec)) return installed.lexically_normal().string();
+  }
+  const fs::path source = fs::path(FLEXCOMP_SOURCE_DIR) / "docs/input-reference.md";
+  if (fs::exists(source, ec)) return source.string();
+  return "share/doc/flexcomp/input-reference.md of the installation";
+}
+
+void addInputReferenceFooter(CLI::App& app) {
+  app.footer("Every input key, with its meaning, unit and default: " + inputReferencePath());
 }
 
 }  // namespace fc

@@ -16,4 +16,11 @@ int guardedMain(const std::string& tool, const std::function<int()>& body);
 // summary, datasets) and exits, whatever else the command line says.
 void addInspectOption(CLI::App& app, const std::string& tool);
 
+// Where the input reference (every YAML key with meaning, unit and default) is:
+// P/share/doc/flexcomp/input-reference.md beside an installed tool (P/bin/TOOL),
+// docs/input-reference.md of the source tree for a tool run from its build tree.
+std::string inputReferencePath();
+// `--help` ends naming that page.
+void addInputReferenceFooter(CLI::App& app);
+
 }  // namespace fc

@@ -52,6 +52,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/modes/eigenvalues", "rad^2/s^2", "omega^2 of each mode"},
       {"flexbody", "/modes/shapes", "kg^-1/2 (translations), rad kg^-1/2 m^-1 (rotations)",
        "mass-normalised mode shapes (n_modes, n_nodes, 6): u1 u2 u3 theta1 theta2 theta3 per node"},
+      {"flexbody", "/view/*", "kg^-1/2, rad kg^-1/2 m^-1 (modes); kg (nodal_mass)",
+       "views for ParaView (BODY.xdmf), virtual datasets holding no data of their own: mode_NN and "
+       "mode_NN_rotation are /modes/shapes[NN-1, :, 0:3] and [NN-1, :, 3:6], nodal_mass is /mass/nodal[:, 0]"},
       {"flexbody", "/mass/nodal", "kg, kg m^2",
        "lumped mass and the three rotary inertias (body axes) of each node (n_nodes, 4)"},
       {"flexbody", "/inertia/mass", "kg", "mass of the simulated body (what its invariants imply)"},

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +50,34 @@ void writeArray(H5File& f, const std::string& path, const std::vector<hsize_t>& 
   for (hsize_t d : dims) empty = empty || d == 0;
   if (set.id < 0 || (!empty && H5Dwrite(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
     throw H5Error(f.path() + ": cannot write dataset " + path + hdf5ErrorReason());
+}
+
+// (n, width) virtual views of columns [first, first + width) of the (n_sets, n, cols)
+// dataset `source` in the same file, one per leading index: ParaView's Xdmf3 readers
+// read no XDMF hyperslab (they skip such fields), so the body's XDMF names these plain
+// datasets. HDF5 virtual datasets store only the mapping: no value is written twice.
+void writeColumnView(H5File& f, const std::string& path, const std::string& source,
+                     const std::vector<hsize_t>& source_dims, hsize_t set, hsize_t first, hsize_t width) {
+  const hsize_t n = source_dims[source_dims.size() - 2];
+  Handle lcpl{H5Pcreate(H5P_LINK_CREATE), H5Pclose};
+  H5Pset_create_intermediate_group(lcpl.id, 1);
+  Handle dcpl{H5Pcreate(H5P_DATASET_CREATE), H5Pclose};
+  const hsize_t view_dims[2] = {n, width};
+  Handle view{H5Screate_simple(width == 1 ? 1 : 2, view_dims, nullptr), H5Sclose};
+  Handle src{H5Screate_simple(static_cast<int>(source_dims.size()), source_dims.data(), nullptr), H5Sclose};
+  std::vector<hsize_t> start(source_dims.size(), 0), count = source_dims;
+  if (source_dims.size() == 3) start[0] = set, count[0] = 1;
+  start.back() = first;
+  count.back() = width;
+  bool ok = lcpl.id >= 0 && dcpl.id >= 0 && view.id >= 0 && src.id >= 0 &&
+            H5Sselect_hyperslab(src.id, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0 &&
+            H5Pset_virtual(dcpl.id, view.id, ".", source.c_str(), src.id) >= 0;
+  if (ok) {
+    Handle set_id{H5Dcreate2(f.id(), path.c_str(), H5T_IEEE_F64LE, view.id, lcpl.id, dcpl.id, H5P_DEFAULT),
+                  H5Dclose};
+    ok = set_id.id >= 0;
+  }
+  if (!ok) throw H5Error(f.path() + ": cannot write the view " + path + " of " + source + hdf5ErrorReason());
 }
 
 std::string dimsText(const std::vector<hsize_t>& d) {
@@ -350,6 +379,12 @@ void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) 
 
 }  // namespace
 
+std::string modeViewName(int mode_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "mode_%02d", mode_index + 1);
+  return name;
+}
+
 void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaInvariants& inv,
                    const Provenance& prov) {
   try {
@@ -380,6 +415,15 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   Eigen::MatrixXd shapes = body.shapes;
   if (shapes.rows() == 0) shapes.resize(6 * n, 0);
   writeArray(f, "/modes/shapes", {um, un, 6}, shapes.data());
+  // The per-mode fields of BODY.xdmf (fe-prep/xdmf_writer.cpp): views, not copies.
+  if (n > 0) {
+    writeColumnView(f, "/view/nodal_mass", "/mass/nodal", {un, 4}, 0, 0, 1);
+    for (int j = 0; j < nm; ++j) {
+      const std::string base = "/view/" + modeViewName(j);
+      writeColumnView(f, base, "/modes/shapes", {um, un, 6}, j, 0, 3);
+      writeColumnView(f, base + "_rotation", "/modes/shapes", {um, un, 6}, j, 3, 3);
+    }
+  }
 
   f.writeScalar("/inertia/mass", body.mass);
   f.writeVector("/inertia/center_of_mass", body.center_of_mass);

@@ -156,6 +156,11 @@ void setRigidPropertiesFromLumpedMasses(FlexBody& body);
 // (std::invalid_argument naming it and the cause) and readFlexBody such a file.
 std::string flexBodyPhysicalProblem(const FlexBody& body);
 
+// "mode_NN" (NN from 01, by ascending frequency): /view/mode_NN and /view/mode_NN_rotation
+// are the (n_nodes, 3) translations and rotations of mode NN, virtual views of
+// /modes/shapes written for ParaView (BODY.xdmf); /view/nodal_mass views /mass/nodal[:, 0].
+std::string modeViewName(int mode_index);
+
 void writeFlexBody(const std::string& path, const FlexBody& body,
                    const InertiaInvariants& invariants, const Provenance& provenance);
 

@@ -161,7 +161,51 @@ InputNode InputNode::loadString(const std::string& text, const std::string& name
     throw InputError(name, 0, 0, "", "out of memory while parsing the file (is it YAML?)");
   }
   validateTree(root, name);
-  return InputNode(root, file, "");
+  InputNode top(root, file, "");
+  // `units:` (default SI): every number of this file is converted when it is read.
+  if (top.isMap() && top.has("units")) {
+    const InputNode u = top["units"];
+    UnitSystem system;
+    if (u.isMap()) {
+      u.allowKeys({"length", "mass", "time"});
+      system.name = "custom";
+      system.length = u["length"].asPositive();
+      system.mass = u["mass"].asPositive();
+      system.time = u["time"].asPositive();
+    } else {
+      const std::string n = u.asString();
+      const UnitSystem* found = findUnitSystem(n);
+      if (!found) {
+        std::vector<std::string> names;
+        std::string list;
+        for (const UnitSystem& k : unitSystems()) {
+          names.push_back(k.name);
+          list += (list.empty() ? "" : ", ") + k.name;
+        }
+        const std::string near = closestMatch(n, names);
+        u.fail("unknown unit system '" + n + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+               "; expected one of " + list + ", or {length: m, mass: kg, time: s}");
+      }
+      system = *found;
+    }
+    if (!system.isSI()) top.units_ = std::make_shared<const UnitSystem>(system);
+  }
+  return top;
+}
+
+// A child node: it keeps the file's units, and its numbers take the dimension of
+// its key (common/units.h), or of the enclosing key when the table has none for it.
+InputNode InputNode::child(YAML::Node node, std::string path, const std::string& key) const {
+  InputNode c(std::move(node), file_, std::move(path));
+  c.units_ = units_;
+  c.scale_ = scale_;
+  if (units_ && !key.empty()) {
+    std::string type;
+    if (node_.IsMap() && node_["type"] && node_["type"].IsScalar()) type = node_["type"].Scalar();
+    Dimension d;
+    if (keyDimension(key, type, d)) c.scale_ = toSI(*units_, d);
+  }
+  return c;
 }
 
 const std::string& InputNode::file() const {
@@ -211,7 +255,7 @@ InputNode InputNode::operator[](const std::string& key) const {
   failIfValueless(key);
   YAML::Node child = node_[key];
   if (!child) throw InputError(file(), line(), column(), child_path, "missing required key '" + key + "'");
-  return InputNode(child, file_, child_path);
+  return this->child(child, child_path, key);
 }
 
 std::optional<InputNode> InputNode::get(const std::string& key) const {
@@ -240,7 +284,7 @@ std::size_t InputNode::size() const {
 InputNode InputNode::at(std::size_t i) const {
   if (!node_.IsSequence()) fail("expected a list, got " + describe(node_));
   if (i >= node_.size()) fail("list has only " + std::to_string(node_.size()) + " entries");
-  return InputNode(node_[i], file_, path_ + "[" + std::to_string(i) + "]");
+  return child(node_[i], path_ + "[" + std::to_string(i) + "]", "");
 }
 
 double InputNode::asDouble() const {
@@ -251,6 +295,8 @@ double InputNode::asDouble() const {
     double v = std::stod(s, &used);
     if (used != s.size()) throw std::invalid_argument(s);
     if (!std::isfinite(v)) fail("expected a finite number, got '" + s + "'");
+    v *= scale_;  // to SI (1 unless the file gives units:)
+    if (!std::isfinite(v)) fail("expected a finite number, got '" + s + "' (infinite in SI units)");
     return v;
   } catch (const std::logic_error&) {
     fail("expected a number, got '" + s + "'");
@@ -270,6 +316,7 @@ double InputNode::asInRange(double lo, double hi, const std::string& unit,
     std::ostringstream os;
     os << "expected a value in [" << lo << ", " << hi << "] " << unit << ", got '" << node_.Scalar()
        << "'";
+    if (scale_ != 1.0) os << " = " << v << " " << unit << " in SI (the file's units: " << units_->name << ")";
     if (!why.empty()) os << " (" << why << ")";
     fail(os.str());
   }
@@ -490,6 +537,7 @@ std::vector<std::pair<std::string, InputNode>> namedEntries(const InputNode& blo
   }
   for (const auto& key : block.keys()) {
     if (key == "include") continue;
+    if (key == "units" && block.path().empty()) continue;  // an included file's own units
     InputNode child = block[key];
     auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == key; });
     if (it != out.end())

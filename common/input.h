@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/units.h"
+
 namespace fc {
 
 // A bad input. what() is the full one-line message:
@@ -47,6 +49,11 @@ class InputNode {
   bool isSequence() const { return node_.IsSequence(); }
   bool isScalar() const { return node_.IsScalar(); }
   bool isNull() const { return !node_ || node_.IsNull(); }
+
+  // The file's `units:` (nullptr: SI). Numbers read through asDouble and what uses it
+  // (asPositive, asInRange, asLength, asVector, asMatrix, number) are converted to SI
+  // by the dimension of their key (common/units.h); asInt never is.
+  const UnitSystem* units() const { return units_.get(); }
 
   bool has(const std::string& key) const;  // present; a key without a value is an error at it
   // Required child: an InputError "missing key" if absent.
@@ -94,7 +101,10 @@ class InputNode {
 
  private:
   void failIfValueless(const std::string& key) const;
+  InputNode child(YAML::Node node, std::string path, const std::string& key) const;
   YAML::Node node_;
+  std::shared_ptr<const UnitSystem> units_;  // the file's units; null: SI
+  double scale_ = 1.0;                        // SI value of one unit of this node's numbers
   std::shared_ptr<const std::string> file_;
   std::string path_;
 };

@@ -100,6 +100,10 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
   if (mesh.has("file")) {
     if (s.has("rectangle")) mesh["file"].fail("give either rectangle: or mesh: {file: ...}, not both");
     shell.rectangle = false;
+    // The mesh file's coordinates are metres: `units:` converts this file's numbers only.
+    if (mesh.units())
+      mesh["file"].fail("a shell mesh file is read in metres; with units: " + mesh.units()->name +
+                        " its coordinates would be taken as metres (write the mesh in metres, or this file in m-kg-s)");
     shell.geo_file = resolveRelativeTo(s.file(), mesh["file"].asString());
     try {
       if (readTextFile(shell.geo_file).empty()) mesh["file"].fail("mesh file '" + shell.geo_file + "' is empty");
@@ -295,7 +299,7 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
 }  // namespace
 
 BodySpec parseBodySpec(const InputNode& root) {
-  root.allowKeys({"materials", "laminates", "body"});
+  root.allowKeys({"units", "materials", "laminates", "body"});
   BodySpec spec;
   MaterialLibrary materials;
   LaminateLibrary laminates;
@@ -336,7 +340,10 @@ BodySpec parseBodySpec(const InputNode& root) {
     for (const auto& key : in.keys()) {
       const InputNode entry = in[key];
       const InputNode p = entry.isMap() ? entry["point"] : entry;
-      InterfaceSpec i{key, p.asVector(3), entry};
+      InterfaceSpec i;
+      i.name = key;
+      i.position = p.asVector(3);
+      i.node = entry;
       // Bodies are far smaller than a kilometre: 1.7e308 made the shapes infinite.
       if (i.position.cwiseAbs().maxCoeff() > 1e3)
         p.fail("expected coordinates within 1000 m of the body's origin (SI units)");

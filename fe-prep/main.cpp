@@ -52,11 +52,12 @@ int main(int argc, char** argv) {
   CLI::App app{"fe-prep: laminated shell and beam models to reduced flexible bodies (flexbody/1 HDF5 files)"};
   std::string input, output;
   bool quiet = false;
-  app.add_option("body", input, "body YAML file (contracts.md, fe-prep)")->required();
+  app.add_option("body", input, "body YAML file (keys: see the input reference below)")->required();
   app.add_option("-o,--output", output, "flexible body file to write (HDF5)")->required();
   app.add_flag("-q,--quiet", quiet, "no progress lines on stderr");
   app.set_version_flag("--version", std::string("fe-prep ") + fc::version());
   fc::addInspectOption(app, "fe-prep");
+  fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
 
   // PETSc options come from PETSC_OPTIONS only: the command line belongs to CLI11.

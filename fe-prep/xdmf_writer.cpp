@@ -1,9 +1,10 @@
-// XDMF for a flexible body file (see xdmf_writer.h). The mode shapes are
-// stored as one (n_modes, n_nodes, 6) array; each mode's translations and
-// rotations are (1, n_nodes, 3) hyperslabs of it, so nothing is duplicated.
-// Written in XDMF 2 syntax: ParaView 5.11's "XDMF Reader" reads attribute
-// hyperslabs, its Xdmf3 readers do not (measured: arrays skipped or a crash),
-// and per-mode copies of the shapes would double the body file.
+// XDMF for a flexible body file (see xdmf_writer.h). Every field is a plain
+// HDF dataset of the body file: the per-mode translations and rotations are the
+// (n_nodes, 3) virtual views /view/mode_NN[_rotation] of /modes/shapes that
+// writeFlexBody adds (common/flexbody.h), so nothing is stored twice and no
+// XDMF hyperslab is needed. ParaView 5.11's legacy "XDMF Reader" read the
+// former hyperslab items; its Xdmf3 readers skipped every one of them
+// ("Skipping unrecognized array type"), which plain datasets avoid.
 #include "fe-prep/xdmf_writer.h"
 
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "common/files.h"
+#include "common/flexbody.h"
 
 namespace fc::feprep {
 
@@ -42,15 +44,13 @@ void hdfItem(std::ostringstream& x, const std::string& dims, const char* number_
     << precision << "\" Format=\"HDF\">" << h5 << ":" << dataset << "</DataItem>\n";
 }
 
-// A (1, n, 3) hyperslab of /modes/shapes starting at column `first` (0: u, 3: theta).
-void modeAttribute(std::ostringstream& x, const std::string& name, int mode, int first, long n, int nm,
-                   const std::string& h5) {
-  x << "      <Attribute Name=\"" << name << "\" AttributeType=\"Vector\" Center=\"Node\">\n"
-    << "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 3\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"8\">\n"
-    << "          <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">" << mode << " 0 " << first
-    << " 1 1 1 1 " << n << " 3</DataItem>\n";
-  hdfItem(x, std::to_string(nm) + " " + std::to_string(n) + " 6", "Float", 8, h5, "/modes/shapes", "          ");
-  x << "        </DataItem>\n      </Attribute>\n";
+// A node-centred field read from dataset `dataset` of the body file, (n, components).
+void nodeAttribute(std::ostringstream& x, const std::string& name, const char* type, long n, int components,
+                   const std::string& h5, const std::string& dataset) {
+  x << "      <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n";
+  hdfItem(x, std::to_string(n) + (components > 1 ? " " + std::to_string(components) : ""), "Float", 8, h5, dataset,
+          "        ");
+  x << "      </Attribute>\n";
 }
 
 }  // namespace
@@ -81,7 +81,7 @@ std::string bodyXdmf(const std::string& h5_path, const FlexBody& body) {
   const int nm = body.modeCount();
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n"
-    << "<!-- Written by fe-prep beside " << h5 << ": open this file in ParaView with the \"XDMF Reader\". "
+    << "<!-- Written by fe-prep beside " << h5 << ": open this file in ParaView with any of its XDMF readers. "
     << "Mode fields are per unit modal coordinate (kg^-1/2). -->\n"
     << "<Xdmf Version=\"2.0\">\n  <Domain>\n";
   // One grid per element kind the body has (shell triangles, beam lines).
@@ -114,15 +114,12 @@ std::string bodyXdmf(const std::string& h5_path, const FlexBody& body) {
     hdfItem(x, std::to_string(n) + " 3", "Float", 8, h5, "/mesh/nodes", "        ");
     x << "      </Geometry>\n";
     // Lumped nodal mass (column 0 of /mass/nodal): shows where the mass sits.
-    x << "      <Attribute Name=\"nodal_mass\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-      << "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 1\" Type=\"HyperSlab\" NumberType=\"Float\" Precision=\"8\">\n"
-      << "          <DataItem Dimensions=\"3 2\" NumberType=\"Int\" Format=\"XML\">0 0 1 1 " << n << " 1</DataItem>\n";
-    hdfItem(x, std::to_string(n) + " 4", "Float", 8, h5, "/mass/nodal", "          ");
-    x << "        </DataItem>\n      </Attribute>\n";
+    nodeAttribute(x, "nodal_mass", "Scalar", n, 1, h5, "/view/nodal_mass");
     for (int j = 0; j < nm; ++j) {
       const std::string name = modeFieldName(j, body.frequencies_hz(j));
-      modeAttribute(x, name, j, 0, n, nm, h5);
-      modeAttribute(x, name + "_rotation", j, 3, n, nm, h5);
+      const std::string view = "/view/" + modeViewName(j);
+      nodeAttribute(x, name, "Vector", n, 3, h5, view);
+      nodeAttribute(x, name + "_rotation", "Vector", n, 3, h5, view + "_rotation");
     }
     x << "    </Grid>\n";
   }

@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
   std::string integrator, animation;
   int animation_every = 1;
   bool quiet = false, accept_inaccurate = false;
-  app.add_option("scene", input, "scene YAML file (contracts.md, mbs-run)")->required();
+  app.add_option("scene", input, "scene YAML file (keys: see the input reference below)")->required();
   app.add_option("-o,--output", output, "results file to write (HDF5, results/1)")->required();
   app.add_option("--t-end", t_end, "end time, overrides simulation.t_end")->check(CLI::PositiveNumber);
   app.add_option("--rtol", rtol, "relative tolerance, overrides simulation.rtol")->check(CLI::Range(1e-13, 0.1));
@@ -205,6 +205,7 @@ int main(int argc, char** argv) {
                "its tolerances allow; the results are written either way)");
   app.set_version_flag("--version", std::string("mbs-run ") + fc::version());
   fc::addInspectOption(app, "mbs-run");
+  fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
 
   return fc::guardedMain("mbs-run", [&] {

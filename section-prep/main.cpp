@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "no summary on stdout, no progress on stderr");
   app.set_version_flag("--version", std::string("section-prep ") + fc::version());
   fc::addInspectOption(app, "section-prep");
+  fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
   // A signal removes the temporary being written and exits: no partial output.
   fc::installTerminationHandlers("section-prep", fc::TerminationPolicy::ExitNow);

@@ -70,7 +70,7 @@ double totalThickness(const std::vector<PlySpec>& plies) {
 }  // namespace
 
 SectionSpec readSectionSpec(const InputNode& root) {
-  root.allowKeys({"materials", "laminates", "section"});
+  root.allowKeys({"units", "materials", "laminates", "section"});
   const MaterialLibrary lib = readMaterials(root["materials"]);
   LaminateLibrary lams;
   if (root.has("laminates")) lams = readLaminates(root["laminates"], lib);
@@ -130,6 +130,10 @@ SectionSpec readSectionSpec(const InputNode& s, const MaterialLibrary& lib,
   } else if (shape == "mesh") {
     s.allowKeys({"shape", "file", "mesh_size", "max_elements"});
     spec.shape = SectionSpec::Shape::Mesh;
+    // The mesh file's coordinates are metres: `units:` converts this file's numbers only.
+    if (s.units())
+      s["file"].fail("a section mesh file is read in metres; with units: " + s.units()->name +
+                     " its coordinates would be taken as metres (write the mesh in metres, or this file in m-kg-s)");
     spec.mesh_file = resolveRelativeTo(s.file(), s["file"].asString());
     for (const auto& [name, m] : lib) materialIndex(spec, index, m);
   } else {

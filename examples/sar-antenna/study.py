@@ -19,8 +19,8 @@ img/accuracy_*.png); only with --update-docs the page goes to the repository's
 docs/accuracy.md and docs/img/ instead. For any other scene and factors, see
 the general tool `flexcomp-study` (tools/flexcomp-study, docs/accuracy.md).
 
-  make -C examples/sar-antenna BUILD=<build dir> study          # out/study/ only
-  make -C examples/sar-antenna BUILD=<build dir> study-docs     # and docs/accuracy.md
+  make -C examples/sar-antenna BIN=<build dir> study          # out/study/ only
+  make -C examples/sar-antenna BIN=<build dir> study-docs     # and docs/accuracy.md
   /usr/bin/python3 study.py --build ../../build [--jobs 2] [--reuse] [--out DIR] [--update-docs | --doc FILE --img DIR]
 """
 import argparse

@@ -238,7 +238,7 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
   std::vector<Track> tracks;
   for (const Body& b : model.bodies) {
     const std::string g = "/bodies/" + b.name + "/";
-    Track tr{f.readMatrix(g + "position"), f.readMatrix(g + "orientation"), Eigen::MatrixXd()};
+    Track tr{f.readMatrix(g + "position"), f.readMatrix(g + "orientation"), Eigen::MatrixXd(), Eigen::MatrixXd()};
     if (b.modes > 0) tr.w = f.readMatrix(g + "modal_coordinates");
     if (tr.r.rows() != t.size() || tr.p.rows() != t.size() || (b.modes > 0 && tr.w.rows() != t.size()))
       throw std::runtime_error(results_path + ": " + g + " has not one row per output time");

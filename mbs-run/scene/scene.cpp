@@ -699,7 +699,7 @@ void parseOutputs(const InputNode& o, Model& m) {
 }  // namespace
 
 Model parseScene(const InputNode& root) {
-  root.allowKeys({"bodies", "joints", "forces", "events", "simulation", "materials", "laminates", "outputs"});
+  root.allowKeys({"units", "bodies", "joints", "forces", "events", "simulation", "materials", "laminates", "outputs"});
   Model m;
   m.source = root.file();
   std::set<std::string> names;

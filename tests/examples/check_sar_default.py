@@ -53,7 +53,7 @@ for name in ("Makefile", "cb_model.py", "study.py", "sar-isotropic.yaml", "sar-r
 for sub in ("bodies", "sections"):
     shutil.copytree(os.path.join(src, sub), os.path.join(work, sub))
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-subprocess.run(["make", "-C", work, "--no-print-directory", f"BUILD={build}", "out/results/sar-isotropic-cb.h5"],
+subprocess.run(["make", "-C", work, "--no-print-directory", f"BIN={build}", "out/results/sar-isotropic-cb.h5"],
                env=env, check=True, stdout=subprocess.DEVNULL)
 
 scene = yaml.safe_load(open(os.path.join(work, "out", "scenes", "sar-isotropic-cb.yaml")))

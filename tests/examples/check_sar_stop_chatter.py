@@ -52,7 +52,7 @@ env = dict(os.environ, PATH=os.pathsep.join([f"{build}/section-prep", f"{build}/
                                              os.environ["PATH"]]))
 trusses = [f"truss_B{k}" for k in range(4, 13)]
 targets = [f"out/bodies/{b}.h5" for b in ["panel2_iso", "panel3_iso"] + trusses]
-subprocess.run(["make", "-C", work, "--no-print-directory", f"BUILD={build}"] + targets, env=env, check=True,
+subprocess.run(["make", "-C", work, "--no-print-directory", f"BIN={build}"] + targets, env=env, check=True,
                stdout=subprocess.DEVNULL)
 
 def phase1_as_measured(scene):

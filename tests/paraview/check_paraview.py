@@ -3,9 +3,14 @@
 
   pvpython check_paraview.py BODY.h5 BODY.xdmf RESULTS.h5 R.pvd EVERY FLEX_BODY_NAME
 
-- BODY.xdmf (ParaView's "XDMF Reader"): point and cell counts of /mesh, one
-  vector field per mode and per mode rotation named mode_NN_F.FFHz[_rotation],
-  and their values equal to /modes/shapes (exactly: the file points into it).
+- BODY.xdmf, in each of ParaView's XDMF readers (the legacy "XDMF Reader" and
+  the Xdmf3 readers "Xdmf3ReaderS" and "Xdmf3ReaderT", which OpenDataFile picks),
+  from the working directory given, from another directory with an absolute
+  path, and from the file's own directory (the legacy reader with the bare file
+  name; the Xdmf3 readers as ./BODY.xdmf, see docs/file-formats.md): point and
+  cell counts of /mesh, one vector field per mode and per mode rotation named
+  mode_NN_F.FFHz[_rotation], and their values equal to /modes/shapes (exactly:
+  the file points into it), and the nodal mass equal to /mass/nodal[:, 0].
 - R.pvd: one time step per EVERY-th output time at the output times, one block
   per body named after it, the flexible body's point count, and at a frame
   after the latch the field `displacement` of the tip node equal to
@@ -13,16 +18,19 @@
   modal result), and the points equal to r + A s0 (undeformed, moved).
 Exit status 0 when every check holds, 1 otherwise (each failure printed).
 """
+import os
 import sys
 
 import h5py
 import numpy as np
 from paraview import servermanager as sm
-from paraview.simple import PVDReader, UpdatePipeline, XDMFReader
+from paraview.simple import PVDReader, UpdatePipeline, XDMFReader, Xdmf3ReaderS, Xdmf3ReaderT
 from vtk.numpy_interface import dataset_adapter as dsa
 
 body_h5, body_xdmf, results_h5, pvd, every, flex_name = sys.argv[1:7]
 every = int(every)
+body_h5, body_xdmf, results_h5, pvd = (os.path.abspath(p) for p in (body_h5, body_xdmf, results_h5, pvd))
+given_xdmf = sys.argv[2]
 failures = []
 
 
@@ -45,27 +53,63 @@ with h5py.File(body_h5, "r") as f:
     freqs = f["modes/frequencies_hz"][:]
 
 # ---- the body file's XDMF ----------------------------------------------------
-r = XDMFReader(FileNames=[body_xdmf])
-r.PointArrayStatus = r.GetProperty("PointArrayInfo")[::2]
-r.UpdatePipeline()
-d = sm.Fetch(r)
-if d.IsA("vtkMultiBlockDataSet"):
-    d = d.GetBlock(0)
-check(d.GetNumberOfPoints() == len(nodes), f"xdmf: {d.GetNumberOfPoints()} points, body file {len(nodes)}")
-check(d.GetNumberOfCells() == n_cells, f"xdmf: {d.GetNumberOfCells()} cells, body file {n_cells}")
-w = dsa.WrapDataObject(d)
-check(np.allclose(np.array(w.Points), nodes, rtol=0, atol=0), "xdmf: points are /mesh/nodes")
-names = [d.GetPointData().GetArrayName(i) for i in range(d.GetPointData().GetNumberOfArrays())]
-for j, fr in enumerate(freqs):
-    mode = [n for n in names if n.startswith(f"mode_{j + 1:02d}_") and n.endswith("Hz")]
-    rot = [n for n in names if n.startswith(f"mode_{j + 1:02d}_") and n.endswith("Hz_rotation")]
-    check(len(mode) == 1 and len(rot) == 1, f"xdmf: mode {j + 1} fields {mode + rot}")
-    if mode and rot:
-        label = float(mode[0][len(f"mode_{j + 1:02d}_"):-2])
-        check(abs(label - fr) <= 5e-4 * fr, f"xdmf: {mode[0]} names {fr:.6g} Hz")
-        u, th = np.array(w.PointData[mode[0]]), np.array(w.PointData[rot[0]])
-        check(u.shape == (len(nodes), 3) and np.array_equal(u, shapes[j, :, :3]), f"xdmf: {mode[0]} = /modes/shapes[{j}, :, 0:3]")
-        check(th.shape == (len(nodes), 3) and np.array_equal(th, shapes[j, :, 3:]), f"xdmf: {rot[0]} = /modes/shapes[{j}, :, 3:6]")
+def open_xdmf(reader, path):
+    if reader == "XDMFReader":
+        r = XDMFReader(FileNames=[path])
+        r.PointArrayStatus = r.GetProperty("PointArrayInfo")[::2]
+    else:
+        r = {"Xdmf3ReaderS": Xdmf3ReaderS, "Xdmf3ReaderT": Xdmf3ReaderT}[reader](FileName=[path])
+    r.UpdatePipeline()
+    d = sm.Fetch(r)
+    if d.IsA("vtkMultiBlockDataSet"):
+        d = d.GetBlock(0)
+    return d
+
+
+def check_xdmf(reader, path, where):
+    tag = f"xdmf {reader} ({where}, {path})"
+    d = open_xdmf(reader, path)
+    check(d is not None and d.GetNumberOfPoints() == len(nodes),
+          f"{tag}: {d.GetNumberOfPoints() if d else 0} points, body file {len(nodes)}")
+    if d is None or d.GetNumberOfPoints() != len(nodes):
+        return
+    check(d.GetNumberOfCells() == n_cells, f"{tag}: {d.GetNumberOfCells()} cells, body file {n_cells}")
+    w = dsa.WrapDataObject(d)
+    check(np.allclose(np.array(w.Points), nodes, rtol=0, atol=0), f"{tag}: points are /mesh/nodes")
+    names = [d.GetPointData().GetArrayName(i) for i in range(d.GetPointData().GetNumberOfArrays())]
+    check(len(names) == 1 + 2 * len(freqs), f"{tag}: {len(names)} fields, expected {1 + 2 * len(freqs)}")
+    if "nodal_mass" in names:
+        check(np.array_equal(np.array(w.PointData["nodal_mass"]).ravel(), nodal_mass[:, 0]),
+              f"{tag}: nodal_mass = /mass/nodal[:, 0]")
+    else:
+        check(False, f"{tag}: field nodal_mass")
+    for j, fr in enumerate(freqs):
+        mode = [n for n in names if n.startswith(f"mode_{j + 1:02d}_") and n.endswith("Hz")]
+        rot = [n for n in names if n.startswith(f"mode_{j + 1:02d}_") and n.endswith("Hz_rotation")]
+        check(len(mode) == 1 and len(rot) == 1, f"{tag}: mode {j + 1} fields {mode + rot}")
+        if mode and rot:
+            label = float(mode[0][len(f"mode_{j + 1:02d}_"):-2])
+            check(abs(label - fr) <= 5e-4 * fr, f"{tag}: {mode[0]} names {fr:.6g} Hz")
+            u, th = np.array(w.PointData[mode[0]]), np.array(w.PointData[rot[0]])
+            check(u.shape == (len(nodes), 3) and np.array_equal(u, shapes[j, :, :3]), f"{tag}: {mode[0]} = /modes/shapes[{j}, :, 0:3]")
+            check(th.shape == (len(nodes), 3) and np.array_equal(th, shapes[j, :, 3:]), f"{tag}: {rot[0]} = /modes/shapes[{j}, :, 3:6]")
+
+
+with h5py.File(body_h5, "r") as f:
+    nodal_mass = f["mass/nodal"][:]
+readers = ["XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT"]
+start = os.getcwd()
+for reader in readers:
+    check_xdmf(reader, given_xdmf, "as given")
+os.chdir("/")  # any other working directory, the path absolute
+for reader in readers:
+    check_xdmf(reader, body_xdmf, "from /")
+os.chdir(os.path.dirname(body_xdmf))  # the file's own directory
+bare = os.path.basename(body_xdmf)
+check_xdmf("XDMFReader", bare, "its directory, bare name")
+for reader in readers[1:]:
+    check_xdmf(reader, "./" + bare, "its directory")
+os.chdir(start)
 
 # ---- the animation ------------------------------------------------------------
 with h5py.File(results_h5, "r") as f:

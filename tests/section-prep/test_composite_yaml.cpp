@@ -59,6 +59,38 @@ TEST(CompositeBox, CusBoxMatchesVabs) {
   EXPECT_NEAR(p.timoshenko(2, 5) / ref.timoshenko(2, 5), 1.0, 5e-3);
 }
 
+TEST(CompositeBox, CusBoxInInchPoundUnitsGivesTheSIStiffness) {
+  // The same deck as a VABS user writes it: `units: in-lbf-s` (inches, lbf, psi, mass in
+  // slinch = lbf s^2/in), the ply density a real AS4 value, 1.353e-4 slinch/in^3 (1446
+  // kg/m^3), which the SI range check would refuse as a unit slip. Read it, convert it at
+  // read time, and the section's stiffness comes out in SI: VABS's matrix (lb, lb in,
+  // lb in^2) times the exact factors lbf = 4.4482216152605 N, in = 0.0254 m.
+  std::string yaml = cusBoxYaml(15);
+  yaml.replace(yaml.find("rho: 1.0"), 8, "rho: 1.353e-4");
+  const SectionSpec spec = readSectionSpec(InputNode::loadString("units: in-lbf-s\n" + yaml, "cus_in.yaml"));
+  const SectionProperties p = analyzeSection(meshSection(spec));
+  const auto ref = testing::readVabsK(std::string(FLEXCOMP_DATA_DIR) + "/vabs/box_cus_comp.sg.K");
+  const double lbf = 4.4482216152605, in = 0.0254;
+  // Rows and columns 0-2 pair with forces and strains, 3-5 with moments and curvatures.
+  Eigen::Matrix<double, 6, 6> ref_si;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) ref_si(i, j) = ref.timoshenko(i, j) * lbf * std::pow(in, (i >= 3) + (j >= 3));
+  double worst = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      worst = std::max(worst, std::abs(p.timoshenko(i, j) - ref_si(i, j)) / std::sqrt(ref_si(i, i) * ref_si(j, j)));
+  std::printf("CUS box in in-lbf-s: largest Timoshenko difference from VABS (in SI) %.2e of the diagonal\n", worst);
+  // The discretisation allowance of CusBoxMatchesVabs above (the same mesh, scaled): a
+  // missed or doubled length factor would be off by 0.0254 or 39 in the bending terms.
+  EXPECT_LT(worst, 5e-3);
+  EXPECT_NEAR(p.timoshenko(0, 0) / ref_si(0, 0), 1.0, 1e-3);
+  EXPECT_NEAR(p.timoshenko(4, 4) / ref_si(4, 4), 1.0, 1e-3);
+  // Mass per length: VABS's mass(0, 0) at its density 1 is the wall area (in^2); times
+  // 1.353e-4 slinch/in^3 and slinch/in -> kg/m. The straight walls make the area exact.
+  const double mu_si = ref.mass(0, 0) * 1.353e-4 * (lbf / in) / in;
+  EXPECT_NEAR(p.mass_per_length / mu_si, 1.0, 1e-6);
+}
+
 TEST(CompositeBox, MirroredLayupFlipsTheCouplings) {
   // Reflecting every ply angle is a mirror image in x1: the extension-twist
   // and shear-bending couplings change sign, the diagonal stays.
