@@ -220,16 +220,29 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
   for (long c = 0; c < out.K.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(out.K, c); it; ++it) knorm = std::max(knorm, std::abs(it.value()));
   double worst = 0.0;
+  Eigen::Index worst_row = 0;
   for (int j = 0; j < 6; ++j) {
     // Rotations weigh by the body size so that the measure is one of forces.
     const double scale = knorm * R.col(j).cwiseAbs().maxCoeff();
-    worst = std::max(worst, KR.col(j).cwiseAbs().maxCoeff() / scale);
+    Eigen::Index row;
+    const double v = KR.col(j).cwiseAbs().maxCoeff(&row) / scale;
+    if (v > worst) worst = v, worst_row = row;
   }
   out.rigid_strain = worst;
-  if (worst > 1e-8)
-    fail(spec.stiffness, 0, "the stiffness strains rigid motions (|K r| / (|K| |r|) = " + std::to_string(worst) +
-                                "): the source model holds the body (boundary conditions, springs to ground) or is not "
-                                "in the model's coordinates; export the free model and give the conditions in reference:");
+  if (worst > 1e-8) {
+    // Where the rigid motion is resisted most: the row's node and DOF, and its line in the DOF list.
+    const long node = out.labels[static_cast<std::size_t>(worst_row / 6)];
+    const int dof = static_cast<int>(worst_row % 6) + 1;
+    int line = 0;
+    for (const NodeDof& d : dofs.dofs)
+      if (d.node == node && d.dof == dof) line = d.line;
+    std::ostringstream os;
+    os << "the stiffness strains rigid motions (|K r| / (|K| |r|) = " << worst << ", most at node " << node << " DOF "
+       << dof << ", " << dofs.file << ":" << line << "): the source model holds the body (boundary conditions, "
+       << "springs to ground), or its matrix and the node coordinates of " << spec.model << " disagree; export the "
+       << "free model and give the conditions in reference:";
+    fail(spec.stiffness, 0, os.str());
+  }
 
   // Node pairs the matrices couple, for the assembly.
   std::vector<std::vector<long>> partners(static_cast<std::size_t>(n));

@@ -116,6 +116,12 @@ TEST(MatrixImportReaders, LocatedRefusals) {
     const std::string q = write(dir, "h.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n0 1 1\n");
     EXPECT_NE(errorOf([&] { readMatrixMarket(q); }).find("h.mtx:3"), std::string::npos);
   }
+  // A DOF listed twice (found by fuzzing the fitting's .dof): both lines named.
+  EXPECT_NE(errorOf([&] { readDofList(write(dir, "j.txt", "1 1\n1 2\n1 2\n")); }).find("j.txt:3: node 1 DOF 2 listed again (first at line 2)"),
+            std::string::npos);
+  // A truncated entry line (fuzzing): the line and the field count.
+  EXPECT_NE(errorOf([&] { readTripletMatrix(write(dir, "k.txt", "1 1 1\n2 2\n3 3 1\n"), 3); }).find("k.txt:2: expected an entry 'row col value', got 2 fields"),
+            std::string::npos);
   // A DOF list line that is no DOF.
   EXPECT_NE(errorOf([&] { readDofList(write(dir, "i.txt", "1 1\n1 7\n")); }).find("i.txt:2"), std::string::npos);
 }
@@ -194,6 +200,7 @@ TEST(MatrixImportModel, LocatedRefusals) {
     const Spring s = spring("import_held", "1 1 2\n1 4 -1\n4 4 1\n2 2 0\n3 3 0\n5 5 0\n6 6 0\n", kSpringM, kSpringNodes);
     const std::string e = errorOf([&] { importMatrices(specOf(s)); });
     EXPECT_NE(e.find("strains rigid motions"), std::string::npos) << e;
+    EXPECT_NE(e.find("most at node 1 DOF 1, " + s.dofs + ":1"), std::string::npos) << e;
   }
 }
 
