@@ -11,7 +11,9 @@
 
 #include "common/flexbody.h"
 #include "common/input.h"
+#include "fe-prep/beam_mesher.h"
 #include "fe-prep/build_body.h"
+#include "fe-prep/elements/beam_element.h"
 #include "fe-prep/import/import_stage.h"
 #include "fe-prep/import/imported_body.h"
 #include "fe-prep/import/matrix_files.h"
@@ -327,6 +329,73 @@ TEST(MatrixImportFitting, RigidPatchStaticDeflectionMatchesCalculix) {
   // 1e-5: the .dat prints 7 digits (5e-7); both are direct solutions of the same K.
   EXPECT_NEAR(c(0) / (1.431469e-5 / 100.0), 1.0, 1e-5);
   EXPECT_NEAR(c(1) / (3.988351e-6 / 100.0), 1.0, 1e-5);
+}
+
+// Six-DOF nodes: a free steel tube's Timoshenko matrices, assembled here from
+// fe-prep's own beam element and written as Matrix Market with a "node dof"
+// list and a "label x y z" table, imported; the same beam built natively
+// (mass: consistent, the same M in the eigenproblem) must have the same
+// frequencies, and /inertia/ equal to M's projection (rotary inertias included).
+TEST(MatrixImportBeam, SixDofNodesGiveTheNativeBeamsFrequencies) {
+  const std::string dir = test::scratchDir("import_beam");
+  const std::string native =
+      "materials:\n  steel: {type: isotropic, E: 2.1e11, nu: 0.3, rho: 7850}\n"
+      "body:\n  name: tube\n  beam: {length: 1.0, elements: 12, section: {shape: tube, outer_diameter: 0.04, wall: {thickness: 0.004}, material: steel}}\n"
+      "  reference: free\n  modes: 6\n  mass: consistent\n";
+  const BodySpec ns = parseBodySpec(InputNode::loadString(native, "tube.yaml"));
+  BuildOptions opt;
+  opt.quiet = true;
+  const BuildResult ref = buildFlexBody(MPI_COMM_WORLD, ns, opt);
+  const Mesh mesh = meshBeam(1.0, 12, {});
+  const long n = mesh.nodeCount();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n, 6 * n), M = K;
+  for (const auto& b : mesh.beams) {
+    const fe::BeamMatrices e = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                                  Eigen::Vector3d::UnitY(), ns.beam->Ks, ns.beam->Ms);
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c) {
+        K.block<6, 6>(6 * b[a], 6 * b[c]) += e.K.block<6, 6>(6 * a, 6 * c);
+        M.block<6, 6>(6 * b[a], 6 * b[c]) += e.M.block<6, 6>(6 * a, 6 * c);
+      }
+  }
+  std::string dofs, nodes;
+  char buf[160];
+  for (long k = 0; k < n; ++k) {
+    for (int d = 1; d <= 6; ++d) dofs += std::to_string(101 + k) + " " + std::to_string(d) + "\n";
+    std::snprintf(buf, sizeof buf, "%ld %.17g %.17g %.17g\n", 101 + k, mesh.nodes(k, 0), mesh.nodes(k, 1), mesh.nodes(k, 2));
+    nodes += buf;
+  }
+  write(dir, "tube.dofs", dofs);
+  write(dir, "tube_nodes.txt", nodes);
+  for (const auto& [name, A] : {std::make_pair(std::string("k"), &K), std::make_pair(std::string("m"), &M)}) {
+    std::string body;
+    long count = 0;
+    for (long j = 0; j < 6 * n; ++j)
+      for (long i = j; i < 6 * n; ++i)
+        if ((*A)(i, j) != 0.0) {
+          std::snprintf(buf, sizeof buf, "%ld %ld %.17g\n", i + 1, j + 1, (*A)(i, j));
+          body += buf;
+          ++count;
+        }
+    write(dir, "tube_" + name + ".mtx", "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(6 * n) + " " +
+                                            std::to_string(6 * n) + " " + std::to_string(count) + "\n" + body);
+  }
+  const std::string yaml = write(dir, "tube.yaml",
+                                 "body:\n  name: tube\n  matrices: {format: matrix_market, stiffness: tube_k.mtx, mass: tube_m.mtx, "
+                                 "dofs: tube.dofs, model: tube_nodes.txt}\n  units: m-kg-s\n  modes: 6\n");
+  const BuildResult r = buildFlexBody(MPI_COMM_WORLD, readBodySpec(yaml), opt);
+  ASSERT_EQ(r.body.eigenvalues.size(), 6);
+  // The same matrices and the same solver: round-off (SLEPc tolerance 1e-10).
+  for (long j = 0; j < 6; ++j) EXPECT_NEAR(r.body.eigenvalues(j) / ref.body.eigenvalues(j), 1.0, 1e-9) << j;
+  const ImportedModel im = importMatrices(*readBodySpec(yaml).matrices);
+  const MassProjection p = rigidMassProjection(im.mesh.nodes, im.M);
+  EXPECT_NEAR(r.body.mass / p.mass, 1.0, 1e-10);
+  EXPECT_LT((r.body.inertia_tensor - p.inertia_about_origin).cwiseAbs().maxCoeff(),
+            1e-10 * p.inertia_about_origin.cwiseAbs().maxCoeff());
+  // And M's projection is the tube's exact mass and inertia (the native body's exact values).
+  EXPECT_NEAR(p.mass / ref.body.exact_mass, 1.0, 1e-12);
+  EXPECT_LT((p.inertia_about_origin - ref.body.exact_inertia_tensor).cwiseAbs().maxCoeff(),
+            1e-10 * ref.body.exact_inertia_tensor.cwiseAbs().maxCoeff());
 }
 
 }  // namespace
