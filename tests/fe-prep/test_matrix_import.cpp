@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 #include "common/flexbody.h"
@@ -396,6 +397,33 @@ TEST(MatrixImportBeam, SixDofNodesGiveTheNativeBeamsFrequencies) {
   EXPECT_NEAR(p.mass / ref.body.exact_mass, 1.0, 1e-12);
   EXPECT_LT((p.inertia_about_origin - ref.body.exact_inertia_tensor).cwiseAbs().maxCoeff(),
             1e-10 * ref.body.exact_inertia_tensor.cwiseAbs().maxCoeff());
+}
+
+// The check against the source: CalculiX's own table agrees (no warning); the
+// same table with elastic mode 3 moved by 1e-4 draws a warning naming it.
+TEST(MatrixImportFitting, SourceFrequencyMismatchIsAWarningNamingTheMode) {
+  const std::string dir = test::scratchDir("import_source_check");
+  std::ifstream in(kData + "fitting_modes.dat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string good = write(dir, "good.dat", text);
+  const std::string mode9 = "      9   0.1353873E+11";
+  const auto at = text.find(mode9);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, mode9.size(), "      9   0.1354008E+11");  // x 1.0001
+  const std::string bad = write(dir, "bad.dat", text);
+  for (const auto& [dat, warns] : {std::make_pair(good, false), std::make_pair(bad, true)}) {
+    const BodySpec spec = fittingSpec(dir, "{format: calculix, stiffness: " + kData + "fitting_matrices.sti, mass: " + kData +
+                                               "fitting_matrices.mas, dofs: " + kData + "fitting_matrices.dof, model: " +
+                                               kData + "fitting_mesh.inp, reference_frequencies: " + dat + "}");
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    importStage(MPI_COMM_WORLD, spec, false);
+    const std::string out = testing::internal::GetCapturedStdout();
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(out.find("mass 0.0471 kg"), std::string::npos) << out;
+    EXPECT_EQ(err.find("warning: elastic mode 3 of the imported matrices") != std::string::npos, warns) << err;
+    if (!warns) EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+  }
 }
 
 }  // namespace
