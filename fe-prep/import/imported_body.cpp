@@ -220,16 +220,29 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
   for (long c = 0; c < out.K.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(out.K, c); it; ++it) knorm = std::max(knorm, std::abs(it.value()));
   double worst = 0.0;
+  Eigen::Index worst_row = 0;
   for (int j = 0; j < 6; ++j) {
     // Rotations weigh by the body size so that the measure is one of forces.
     const double scale = knorm * R.col(j).cwiseAbs().maxCoeff();
-    worst = std::max(worst, KR.col(j).cwiseAbs().maxCoeff() / scale);
+    Eigen::Index row;
+    const double v = KR.col(j).cwiseAbs().maxCoeff(&row) / scale;
+    if (v > worst) worst = v, worst_row = row;
   }
   out.rigid_strain = worst;
-  if (worst > 1e-8)
-    fail(spec.stiffness, 0, "the stiffness strains rigid motions (|K r| / (|K| |r|) = " + std::to_string(worst) +
-                                "): the source model holds the body (boundary conditions, springs to ground) or is not "
-                                "in the model's coordinates; export the free model and give the conditions in reference:");
+  if (worst > 1e-8) {
+    // Where the rigid motion is resisted most: the row's node and DOF, and its line in the DOF list.
+    const long node = out.labels[static_cast<std::size_t>(worst_row / 6)];
+    const int dof = static_cast<int>(worst_row % 6) + 1;
+    int line = 0;
+    for (const NodeDof& d : dofs.dofs)
+      if (d.node == node && d.dof == dof) line = d.line;
+    std::ostringstream os;
+    os << "the stiffness strains rigid motions (|K r| / (|K| |r|) = " << worst << ", most at node " << node << " DOF "
+       << dof << ", " << dofs.file << ":" << line << "): the source model holds the body (boundary conditions, "
+       << "springs to ground), or its matrix and the node coordinates of " << spec.model << " disagree; export the "
+       << "free model and give the conditions in reference:";
+    fail(spec.stiffness, 0, os.str());
+  }
 
   // Node pairs the matrices couple, for the assembly.
   std::vector<std::vector<long>> partners(static_cast<std::size_t>(n));
@@ -310,7 +323,61 @@ ImportedLumping importedNodalMasses(const Eigen::MatrixXd& nodes, const Eigen::S
   const MomentLumping ml = momentConsistentMasses(nodes, out.nodal.col(0), p.mass, p.first_moment, E);
   out.applied = ml.applied;
   out.min_ratio = ml.min_ratio;
-  if (ml.applied) out.nodal.col(0) = ml.masses;
+  if (ml.applied) {
+    out.nodal.col(0) = ml.masses;
+    return out;
+  }
+  // Nodes on a line or a plane cannot carry every second moment in their
+  // translational masses; with 6-DOF nodes the rotary inertias can take the
+  // rest. Translations: the mass and first moment made exact, the second
+  // moment kept at the scaled diagonal's; rotations: what the projection's
+  // inertia still lacks, J - (tr(E) I - E), if it is diagonal and non-negative,
+  // shared among the 6-DOF nodes in proportion to their diagonal rotary terms.
+  if (rotary.trace() <= 0.0) return out;
+  // The translational masses closest (relative change) to the scaled diagonal
+  // whose moments are the least-squares fit of the targets: what the nodes'
+  // geometry can carry (the same correction as mass_lumping.h, kept when the
+  // targets are only partly reachable).
+  const Eigen::VectorXd m0 = out.nodal.col(0);
+  const double Lc = std::max((nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).norm(), 1e-300);
+  const Eigen::MatrixXd Y = nodes / Lc;
+  Eigen::MatrixXd C(10, n);
+  for (long k = 0; k < n; ++k) {
+    const double x = Y(k, 0), y = Y(k, 1), z = Y(k, 2);
+    C.col(k) << 1, x, y, z, x * x, y * y, z * z, x * y, x * z, y * z;
+  }
+  const Eigen::Vector3d f = p.first_moment / Lc;
+  const Eigen::Matrix3d Es = E / (Lc * Lc);
+  Eigen::VectorXd b(10);
+  b << p.mass, f.x(), f.y(), f.z(), Es(0, 0), Es(1, 1), Es(2, 2), Es(0, 1), Es(0, 2), Es(1, 2);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(C * m0.asDiagonal() * C.transpose());
+  Eigen::VectorXd inv = Eigen::VectorXd::Zero(10);
+  for (int i = 0; i < 10; ++i)
+    if (es.eigenvalues()(i) > 1e-12 * es.eigenvalues().cwiseAbs().maxCoeff()) inv(i) = 1.0 / es.eigenvalues()(i);
+  const Eigen::VectorXd lambda = es.eigenvectors() * inv.asDiagonal() * es.eigenvectors().transpose() * (b - C * m0);
+  const Eigen::VectorXd mt = m0 + m0.asDiagonal() * (C.transpose() * lambda);
+  const double ratio = (mt.array() / m0.array()).minCoeff();
+  if (!(ratio >= 0.1)) return out;
+  // Mass and first moment must be met exactly.
+  const Eigen::VectorXd got = C * mt;
+  if ((got.head<4>() - b.head<4>()).norm() > 1e-12 * b.head<4>().norm()) return out;
+  Eigen::Matrix3d Et = Eigen::Matrix3d::Zero();
+  for (long k = 0; k < n; ++k) Et += mt(k) * nodes.row(k).transpose() * nodes.row(k);
+  const Eigen::Matrix3d need = p.inertia_about_origin - (Et.trace() * Eigen::Matrix3d::Identity() - Et);
+  const double scale = p.inertia_about_origin.cwiseAbs().maxCoeff();
+  const Eigen::Matrix3d off = need - Eigen::Matrix3d(need.diagonal().asDiagonal());
+  if (off.cwiseAbs().maxCoeff() > 1e-12 * scale || need.diagonal().minCoeff() < -1e-12 * scale) return out;
+  for (int a = 0; a < 3; ++a) {
+    const double have = rotary(a, a);
+    if (have <= 0.0) {
+      if (need(a, a) > 1e-12 * scale) return out;  // no node can carry it
+      continue;
+    }
+    out.nodal.col(1 + a) *= std::max(need(a, a), 0.0) / have;
+  }
+  out.nodal.col(0) = mt;
+  out.applied = true;
+  out.min_ratio = ratio;
   return out;
 }
 

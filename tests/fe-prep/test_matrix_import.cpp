@@ -7,11 +7,14 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 #include "common/flexbody.h"
 #include "common/input.h"
+#include "fe-prep/beam_mesher.h"
 #include "fe-prep/build_body.h"
+#include "fe-prep/elements/beam_element.h"
 #include "fe-prep/import/import_stage.h"
 #include "fe-prep/import/imported_body.h"
 #include "fe-prep/import/matrix_files.h"
@@ -116,6 +119,12 @@ TEST(MatrixImportReaders, LocatedRefusals) {
     const std::string q = write(dir, "h.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n0 1 1\n");
     EXPECT_NE(errorOf([&] { readMatrixMarket(q); }).find("h.mtx:3"), std::string::npos);
   }
+  // A DOF listed twice (found by fuzzing the fitting's .dof): both lines named.
+  EXPECT_NE(errorOf([&] { readDofList(write(dir, "j.txt", "1 1\n1 2\n1 2\n")); }).find("j.txt:3: node 1 DOF 2 listed again (first at line 2)"),
+            std::string::npos);
+  // A truncated entry line (fuzzing): the line and the field count.
+  EXPECT_NE(errorOf([&] { readTripletMatrix(write(dir, "k.txt", "1 1 1\n2 2\n3 3 1\n"), 3); }).find("k.txt:2: expected an entry 'row col value', got 2 fields"),
+            std::string::npos);
   // A DOF list line that is no DOF.
   EXPECT_NE(errorOf([&] { readDofList(write(dir, "i.txt", "1 1\n1 7\n")); }).find("i.txt:2"), std::string::npos);
 }
@@ -194,6 +203,7 @@ TEST(MatrixImportModel, LocatedRefusals) {
     const Spring s = spring("import_held", "1 1 2\n1 4 -1\n4 4 1\n2 2 0\n3 3 0\n5 5 0\n6 6 0\n", kSpringM, kSpringNodes);
     const std::string e = errorOf([&] { importMatrices(specOf(s)); });
     EXPECT_NE(e.find("strains rigid motions"), std::string::npos) << e;
+    EXPECT_NE(e.find("most at node 1 DOF 1, " + s.dofs + ":1"), std::string::npos) << e;
   }
 }
 
@@ -320,6 +330,100 @@ TEST(MatrixImportFitting, RigidPatchStaticDeflectionMatchesCalculix) {
   // 1e-5: the .dat prints 7 digits (5e-7); both are direct solutions of the same K.
   EXPECT_NEAR(c(0) / (1.431469e-5 / 100.0), 1.0, 1e-5);
   EXPECT_NEAR(c(1) / (3.988351e-6 / 100.0), 1.0, 1e-5);
+}
+
+// Six-DOF nodes: a free steel tube's Timoshenko matrices, assembled here from
+// fe-prep's own beam element and written as Matrix Market with a "node dof"
+// list and a "label x y z" table, imported; the same beam built natively
+// (mass: consistent, the same M in the eigenproblem) must have the same
+// frequencies, and /inertia/ equal to M's projection (rotary inertias included).
+TEST(MatrixImportBeam, SixDofNodesGiveTheNativeBeamsFrequencies) {
+  const std::string dir = test::scratchDir("import_beam");
+  const std::string native =
+      "materials:\n  steel: {type: isotropic, E: 2.1e11, nu: 0.3, rho: 7850}\n"
+      "body:\n  name: tube\n  beam: {length: 1.0, elements: 12, section: {shape: tube, outer_diameter: 0.04, wall: {thickness: 0.004}, material: steel}}\n"
+      "  reference: free\n  modes: 6\n  mass: consistent\n";
+  const BodySpec ns = parseBodySpec(InputNode::loadString(native, "tube.yaml"));
+  BuildOptions opt;
+  opt.quiet = true;
+  const BuildResult ref = buildFlexBody(MPI_COMM_WORLD, ns, opt);
+  const Mesh mesh = meshBeam(1.0, 12, {});
+  const long n = mesh.nodeCount();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n, 6 * n), M = K;
+  for (const auto& b : mesh.beams) {
+    const fe::BeamMatrices e = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                                  Eigen::Vector3d::UnitY(), ns.beam->Ks, ns.beam->Ms);
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c) {
+        K.block<6, 6>(6 * b[a], 6 * b[c]) += e.K.block<6, 6>(6 * a, 6 * c);
+        M.block<6, 6>(6 * b[a], 6 * b[c]) += e.M.block<6, 6>(6 * a, 6 * c);
+      }
+  }
+  std::string dofs, nodes;
+  char buf[160];
+  for (long k = 0; k < n; ++k) {
+    for (int d = 1; d <= 6; ++d) dofs += std::to_string(101 + k) + " " + std::to_string(d) + "\n";
+    std::snprintf(buf, sizeof buf, "%ld %.17g %.17g %.17g\n", 101 + k, mesh.nodes(k, 0), mesh.nodes(k, 1), mesh.nodes(k, 2));
+    nodes += buf;
+  }
+  write(dir, "tube.dofs", dofs);
+  write(dir, "tube_nodes.txt", nodes);
+  for (const auto& [name, A] : {std::make_pair(std::string("k"), &K), std::make_pair(std::string("m"), &M)}) {
+    std::string body;
+    long count = 0;
+    for (long j = 0; j < 6 * n; ++j)
+      for (long i = j; i < 6 * n; ++i)
+        if ((*A)(i, j) != 0.0) {
+          std::snprintf(buf, sizeof buf, "%ld %ld %.17g\n", i + 1, j + 1, (*A)(i, j));
+          body += buf;
+          ++count;
+        }
+    write(dir, "tube_" + name + ".mtx", "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(6 * n) + " " +
+                                            std::to_string(6 * n) + " " + std::to_string(count) + "\n" + body);
+  }
+  const std::string yaml = write(dir, "tube.yaml",
+                                 "body:\n  name: tube\n  matrices: {format: matrix_market, stiffness: tube_k.mtx, mass: tube_m.mtx, "
+                                 "dofs: tube.dofs, model: tube_nodes.txt}\n  units: m-kg-s\n  modes: 6\n");
+  const BuildResult r = buildFlexBody(MPI_COMM_WORLD, readBodySpec(yaml), opt);
+  ASSERT_EQ(r.body.eigenvalues.size(), 6);
+  // The same matrices and the same solver: round-off (SLEPc tolerance 1e-10).
+  for (long j = 0; j < 6; ++j) EXPECT_NEAR(r.body.eigenvalues(j) / ref.body.eigenvalues(j), 1.0, 1e-9) << j;
+  const ImportedModel im = importMatrices(*readBodySpec(yaml).matrices);
+  const MassProjection p = rigidMassProjection(im.mesh.nodes, im.M);
+  EXPECT_NEAR(r.body.mass / p.mass, 1.0, 1e-10);
+  EXPECT_LT((r.body.inertia_tensor - p.inertia_about_origin).cwiseAbs().maxCoeff(),
+            1e-10 * p.inertia_about_origin.cwiseAbs().maxCoeff());
+  // And M's projection is the tube's exact mass and inertia (the native body's exact values).
+  EXPECT_NEAR(p.mass / ref.body.exact_mass, 1.0, 1e-12);
+  EXPECT_LT((p.inertia_about_origin - ref.body.exact_inertia_tensor).cwiseAbs().maxCoeff(),
+            1e-10 * ref.body.exact_inertia_tensor.cwiseAbs().maxCoeff());
+}
+
+// The check against the source: CalculiX's own table agrees (no warning); the
+// same table with elastic mode 3 moved by 1e-4 draws a warning naming it.
+TEST(MatrixImportFitting, SourceFrequencyMismatchIsAWarningNamingTheMode) {
+  const std::string dir = test::scratchDir("import_source_check");
+  std::ifstream in(kData + "fitting_modes.dat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string good = write(dir, "good.dat", text);
+  const std::string mode9 = "      9   0.1353873E+11";
+  const auto at = text.find(mode9);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, mode9.size(), "      9   0.1354008E+11");  // x 1.0001
+  const std::string bad = write(dir, "bad.dat", text);
+  for (const auto& [dat, warns] : {std::make_pair(good, false), std::make_pair(bad, true)}) {
+    const BodySpec spec = fittingSpec(dir, "{format: calculix, stiffness: " + kData + "fitting_matrices.sti, mass: " + kData +
+                                               "fitting_matrices.mas, dofs: " + kData + "fitting_matrices.dof, model: " +
+                                               kData + "fitting_mesh.inp, reference_frequencies: " + dat + "}");
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    importStage(MPI_COMM_WORLD, spec, false);
+    const std::string out = testing::internal::GetCapturedStdout();
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(out.find("mass 0.0471 kg"), std::string::npos) << out;
+    EXPECT_EQ(err.find("warning: elastic mode 3 of the imported matrices") != std::string::npos, warns) << err;
+    if (!warns) EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+  }
 }
 
 }  // namespace
