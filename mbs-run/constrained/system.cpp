@@ -489,19 +489,22 @@ std::string System::nonFiniteCause(double t, const VectorXd& y) {
   return "";
 }
 
-double System::project(double t, VectorXd& y) {
-  // The frames first, the modal coordinates held; all coordinates only for
-  // what is left (a loop closed through a body's deflection). In M's metric
-  // the correction also moves the modal coordinates, by O(drift) through the
-  // frame-mode coupling: a move dq_k of a mode at omega_k sets it ringing at
-  // omega_k dq_k, 1e3-1e4 tolerance units of a 14 kHz mode's rate for a 1e-8
-  // correction, which the error control then resolves (docs/mbs-run.md,
-  // "Projections and stiff modes").
-  correctPositions(t, y, true, false, 10);
+double System::project(double t, VectorXd& y, bool hold_modes) {
+  // Drift: the frames first, the modal coordinates held; all coordinates
+  // only for what is left (a loop closed through a body's deflection). In
+  // M's metric the correction also moves the modal coordinates, by O(drift)
+  // through the frame-mode coupling: a move dq_k of a mode at omega_k sets it
+  // ringing at omega_k dq_k, 1e3-1e4 tolerance units of a 14 kHz mode's rate
+  // for a 1e-8 correction, which the error control then resolves
+  // (docs/mbs-run.md, "Projections and stiff modes").
+  if (hold_modes) correctPositions(t, y, true, false, 10);
   const double viol = correctPositions(t, y, false, false, 10).violation;
-  correctVelocities(t, y, true);
-  const VectorXd v = y.segment(model_.nq, model_.nv);
-  if (violations(t, y).velocity > 1e-13 * (1.0 + v.lpNorm<Eigen::Infinity>())) correctVelocities(t, y, false);
+  if (hold_modes) {
+    correctVelocities(t, y, true);
+    const VectorXd v = y.segment(model_.nq, model_.nv);
+    if (violations(t, y).velocity <= 1e-13 * (1.0 + v.lpNorm<Eigen::Infinity>())) return viol;
+  }
+  correctVelocities(t, y, false);
   return viol;
 }
 

@@ -69,8 +69,11 @@ class System {
   // Mass-orthogonal projection of positions then velocities; normalises the
   // Euler parameters. Returns the largest position violation after projecting.
   // For the drift of a step or the jump of an event (small): ten Newton
-  // passes with full steps.
-  double project(double t, Eigen::VectorXd& y);
+  // passes with full steps. hold_modes (the drift of a step): the frames
+  // first with the modal coordinates and rates held, all coordinates only for
+  // what is left; the default, M's metric on all, is an event's plastic
+  // impact, whose impulse excites the modes as the real one does.
+  double project(double t, Eigen::VectorXd& y, bool hold_modes = false);
 
   // The consistent start's projection, for a scene that may be placed far
   // from assembled (docs/mbs-run.md, "Consistent start"): first the bodies'

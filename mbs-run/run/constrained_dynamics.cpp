@@ -24,7 +24,7 @@ namespace {
 bool projectDrift(System& sys, double t, VectorXd& y, double atol, bool always) {
   const System::Violations viol = sys.violations(t, y);
   const bool project = always || viol.position > 0.1 * atol || viol.velocity > 0.1 * atol;
-  if (project) sys.project(t, y);
+  if (project) sys.project(t, y, true);  // drift: modes held (System::project)
   return project;
 }
 
