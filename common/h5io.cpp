@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <set>
@@ -344,6 +345,17 @@ void H5File::writeString(const std::string& path, const std::string& value) {
   H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
   const std::string v = value.empty() ? std::string(1, '\0') : value;
   writeRaw(id_, path_, path, type.get(), type.get(), {}, v.data());
+}
+
+void H5File::writeStrings(const std::string& path, const std::vector<std::string>& values) {
+  std::size_t width = 1;
+  for (const auto& v : values) width = std::max(width, v.size());
+  std::string buf(width * values.size(), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) buf.replace(i * width, values[i].size(), values[i]);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), width);
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  writeRaw(id_, path_, path, type.get(), type.get(), {static_cast<hsize_t>(values.size())}, buf.data());
 }
 
 namespace {
