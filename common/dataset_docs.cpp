@@ -107,6 +107,18 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"flexbody", "/stress/strains", "1 and 1/m per kg^1/2 m",
        "shells: membrane strains eps_xx eps_yy gamma_xy and curvatures kappa_xx kappa_yy kappa_xy at each element "
        "centroid per unit modal coordinate, laminate axes (n_modes, n_elements, 6)"},
+      {"flexbody", "/stress/section/ply_stress", "Pa per N or N m",
+       "(6, n_section_elements, 3): the beam section's ply stresses [s_11, s_22, t_12] per unit resultant "
+       "[N, V2, V3, T, M2, M3] (section-prep's /recovery/ply_stress)"},
+      {"flexbody", "/stress/section/centroids", "m", "(n_section_elements, 2): section element centroids (x2, x3)"},
+      {"flexbody", "/stress/section/material", "1", "(n_section_elements): material name of each section element"},
+      {"flexbody", "/stress/section/has_plies", "1", "(n_section_elements): 1 for a ply material, 0 isotropic"},
+      {"flexbody", "/stress/section/strength", "Pa", "(n_section_elements, 5): Xt Xc Yt Yc S12, zero where none"},
+      {"flexbody", "/stress/beam_lengths", "m", "(n_elements): length of each beam element"},
+      {"flexbody", "/stress/stations", "m",
+       "(3 n_elements, 3): each beam element's first node, midpoint and second node, body frame"},
+      {"results", "/bodies/*/stations", "m",
+       "(n_stations, 3): body-frame points on a beam's axis where its section stresses are recovered"},
       {"flexbody", "/stress/section_resultants", "N and N m per kg^1/2 m",
        "beams: section resultants N V2 V3 T M2 M3 at each element midpoint per unit modal coordinate, element "
        "section axes (n_modes, n_elements, 6)"},

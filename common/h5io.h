@@ -79,6 +79,8 @@ class H5File {
   long readInt(const std::string& path) const;
   std::vector<long> readIntVector(const std::string& path) const;  // any rank, flattened
   std::string readString(const std::string& path) const;
+  // (n) fixed- or variable-length strings.
+  std::vector<std::string> readStrings(const std::string& path) const;
   std::vector<double> readArray(const std::string& path) const;   // any rank, flattened C order
 
   // Checks the root `format` attribute: "KIND/VERSION". Throws H5Error naming the

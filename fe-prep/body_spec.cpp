@@ -4,6 +4,7 @@
 #include <set>
 
 #include "common/files.h"
+#include "common/flexbody.h"
 #include "common/h5io.h"
 #include "common/materials.h"
 
@@ -130,6 +131,7 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
       if (llt.info() != Eigen::Success)
         throw H5Error(path + ": /stiffness/timoshenko is not positive definite");
       if (!(beam.Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
+      beam.section_basis = readSectionStressBasis(path);
     } catch (const std::exception& e) {
       sec["file"].fail(std::string("cannot use section file: ") + e.what() +
                        "; expected a section-prep output (format section/1)");

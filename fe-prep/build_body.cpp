@@ -139,6 +139,19 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
     // Section resultants at the midpoints per mode, by the element's own
     // equilibrium (fc::fe::beamMidpointResultants, docs/elements.md).
     d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, kSectionX2, spec.beam->Ks, shapes);
+    // The section's stresses per unit resultant, for ply stresses at stations.
+    d.section = spec.beam->section_basis;
+    if (!d.section.empty()) {
+      d.beam_lengths.resize(ne);
+      d.beam_stations.resize(3 * ne, 3);
+      for (long e = 0; e < ne; ++e) {
+        const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+        d.beam_lengths(e) = (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm();
+        d.beam_stations.row(3 * e) = mesh.nodes.row(b[0]);
+        d.beam_stations.row(3 * e + 1) = d.centroids.row(e);
+        d.beam_stations.row(3 * e + 2) = mesh.nodes.row(b[1]);
+      }
+    }
   }
   return d;
 }
