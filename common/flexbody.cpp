@@ -344,6 +344,25 @@ long n_elements(const FlexBody& b) {
   return n;
 }
 
+// A beam's section recovery basis under /stress/section/ (docs/body-file.md).
+void writeSectionBasis(H5File& f, const StressRecoveryData& d, long n_el) {
+  const SectionStressBasis& s = d.section;
+  if (s.empty()) return;
+  const long ns = s.size();
+  if (s.ply_stress.rows() != 3 * ns || s.ply_stress.cols() != 6 || static_cast<long>(s.material.size()) != ns ||
+      static_cast<long>(s.has_plies.size()) != ns || s.strength.rows() != ns || s.strength.cols() != 5 ||
+      d.beam_lengths.size() != n_el || d.beam_stations.rows() != 3 * n_el || d.beam_stations.cols() != 3)
+    throw std::invalid_argument(f.path() + ": the section recovery basis's columns differ in length");
+  // Column-major (3 ns, 6) is C-order (6, ns, 3), as the section file's /recovery/ply_stress.
+  writeArray(f, "/stress/section/ply_stress", {6, static_cast<hsize_t>(ns), 3}, s.ply_stress.data());
+  f.writeMatrix("/stress/section/centroids", s.centroids);
+  f.writeStrings("/stress/section/material", s.material);
+  f.writeIntVector("/stress/section/has_plies", s.has_plies);
+  f.writeMatrix("/stress/section/strength", s.strength);
+  f.writeVector("/stress/beam_lengths", d.beam_lengths);
+  f.writeMatrix("/stress/stations", d.beam_stations);
+}
+
 // /mesh/centroids and, for shells, /stress/strains and /stress/plies/*
 // (docs/body-file.md, "Stress recovery data").
 void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) {
@@ -357,6 +376,7 @@ void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) 
     // Column-major (6 n_el, nm) is C-order (nm, n_el, 6), as /modes/shapes.
     writeArray(f, "/stress/section_resultants", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_el), 6},
                d.beam_resultants.data());
+    writeSectionBasis(f, d, n_el);
   }
   if (!d.hasShell()) return;
   const long np = d.plies.size();
@@ -679,6 +699,23 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
   if (beam) {
     const std::vector<double> r = readLeading(f, "/stress/section_resultants", {um, cs[0], 6}, {false, true, true});
     d.beam_resultants = Eigen::Map<const Eigen::MatrixXd>(r.data(), 6 * ne, n_modes);
+    if (f.exists("/stress/section/ply_stress")) {
+      const std::vector<hsize_t> ss = f.shape("/stress/section/centroids");
+      if (ss.size() != 2 || ss[1] != 2) throw H5Error(path + ": /stress/section/centroids must be (n, 2)");
+      const long ns = static_cast<long>(ss[0]);
+      SectionStressBasis& s = d.section;
+      const std::vector<double> ps = readLeading(f, "/stress/section/ply_stress", {6, ss[0], 3}, {true, true, true});
+      s.ply_stress = Eigen::Map<const Eigen::MatrixXd>(ps.data(), 3 * ns, 6);
+      s.centroids = rowMajor(readLeading(f, "/stress/section/centroids", {ss[0], 2}, {true, true}), ns, 2);
+      s.strength = rowMajor(readLeading(f, "/stress/section/strength", {ss[0], 5}, {true, true}), ns, 5);
+      s.material = f.readStrings("/stress/section/material");
+      s.has_plies = f.readIntVector("/stress/section/has_plies");
+      const std::vector<double> L = readLeading(f, "/stress/beam_lengths", {cs[0]}, {true});
+      d.beam_lengths = Eigen::Map<const Eigen::VectorXd>(L.data(), ne);
+      d.beam_stations = rowMajor(readLeading(f, "/stress/stations", {3 * cs[0], 3}, {true, true}), 3 * ne, 3);
+      if (static_cast<long>(s.material.size()) != ns || static_cast<long>(s.has_plies.size()) != ns)
+        throw H5Error(path + ": /stress/section/material and has_plies must have one entry per section element");
+    }
     return d;
   }
   const std::vector<double> st = readLeading(f, "/stress/strains", {um, cs[0], 6}, {false, true, true});
@@ -698,6 +735,33 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
       throw H5Error(path + ": /stress/plies/strength holds a non-positive strength");
   }
   return d;
+}
+
+SectionStressBasis readSectionStressBasis(const std::string& path) {
+  H5File f(path, H5File::Mode::Read);
+  SectionStressBasis s;
+  if (!f.exists("/recovery/ply_stress")) return s;
+  const std::vector<hsize_t> sh = f.shape("/recovery/ply_stress");
+  if (sh.size() != 3 || sh[0] != 6 || sh[2] != 3)
+    throw H5Error(path + ": /recovery/ply_stress must be (6, n_elements, 3), got " + dimsText(sh));
+  const long ns = static_cast<long>(sh[1]);
+  const std::vector<double> ps = readLeading(f, "/recovery/ply_stress", {6, sh[1], 3}, {true, true, true});
+  s.ply_stress = Eigen::Map<const Eigen::MatrixXd>(ps.data(), 3 * ns, 6);
+  s.centroids = rowMajor(readLeading(f, "/mesh/centroids", {sh[1], 2}, {true, true}), ns, 2);
+  s.material = f.readStrings("/mesh/material");
+  s.has_plies = f.readIntVector("/mesh/has_plies");
+  const std::vector<long> index = f.readIntVector("/mesh/material_index");
+  const Eigen::MatrixXd strength = f.readMatrix("/materials/strength");
+  if (static_cast<long>(s.material.size()) != ns || static_cast<long>(s.has_plies.size()) != ns ||
+      static_cast<long>(index.size()) != ns || strength.cols() != 5)
+    throw H5Error(path + ": /mesh/material, has_plies, material_index and /materials/strength do not match "
+                  "/recovery/ply_stress");
+  s.strength.resize(ns, 5);
+  for (long e = 0; e < ns; ++e) {
+    if (index[e] < 0 || index[e] >= strength.rows()) throw H5Error(path + ": /mesh/material_index out of range");
+    s.strength.row(e) = strength.row(index[e]);
+  }
+  return s;
 }
 
 }  // namespace fc

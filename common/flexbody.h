@@ -194,4 +194,9 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes = -1,
 // recovery existed) or when a dataset is mis-shaped or not finite.
 StressRecoveryData readStressData(const std::string& path, int n_modes);
 
+// The stress recovery basis of a section-prep file (section/1 with
+// /recovery/ply_stress, /mesh/*, /materials/*); empty when the file has none.
+// H5Error naming the file when it is mis-shaped.
+SectionStressBasis readSectionStressBasis(const std::string& section_path);
+
 }  // namespace fc

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <set>
@@ -344,6 +345,48 @@ void H5File::writeString(const std::string& path, const std::string& value) {
   H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
   const std::string v = value.empty() ? std::string(1, '\0') : value;
   writeRaw(id_, path_, path, type.get(), type.get(), {}, v.data());
+}
+
+std::vector<std::string> H5File::readStrings(const std::string& path) const {
+  Handle dset(H5Dopen2(id_, path.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dset.ok()) throw H5Error(path_ + ": missing dataset " + path);
+  Handle ftype(H5Dget_type(dset.get()), H5Tclose);
+  Handle space(H5Dget_space(dset.get()), H5Sclose);
+  if (H5Tget_class(ftype.get()) != H5T_STRING || H5Sget_simple_extent_ndims(space.get()) != 1)
+    throw H5Error(path_ + ": " + path + " is not a list of strings");
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<std::string> out;
+  Handle mtype(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (H5Tis_variable_str(ftype.get()) > 0) {
+    H5Tset_size(mtype.get(), H5T_VARIABLE);
+    std::vector<char*> p(static_cast<std::size_t>(n), nullptr);
+    if (H5Dread(dset.get(), mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()) < 0)
+      throw H5Error(path_ + ": cannot read " + path + hdf5ErrorReason());
+    for (char* s : p) out.emplace_back(s ? s : "");
+    H5Dvlen_reclaim(mtype.get(), space.get(), H5P_DEFAULT, p.data());
+    return out;
+  }
+  const std::size_t w = H5Tget_size(ftype.get()) + 1;
+  H5Tset_size(mtype.get(), w);
+  std::string buf(w * static_cast<std::size_t>(n), '\0');
+  if (H5Dread(dset.get(), mtype.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+    throw H5Error(path_ + ": cannot read " + path + hdf5ErrorReason());
+  for (hssize_t i = 0; i < n; ++i) {
+    const std::string s = buf.substr(static_cast<std::size_t>(i) * w, w);
+    out.push_back(s.substr(0, s.find('\0')));
+  }
+  return out;
+}
+
+void H5File::writeStrings(const std::string& path, const std::vector<std::string>& values) {
+  std::size_t width = 1;
+  for (const auto& v : values) width = std::max(width, v.size());
+  std::string buf(width * values.size(), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) buf.replace(i * width, values[i].size(), values[i]);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), width);
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  writeRaw(id_, path_, path, type.get(), type.get(), {static_cast<hsize_t>(values.size())}, buf.data());
 }
 
 namespace {

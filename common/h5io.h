@@ -55,6 +55,8 @@ class H5File {
   void writeIntVector(const std::string& path, const std::vector<long>& v);
   void writeIntMatrix(const std::string& path, const Eigen::Matrix<long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& m);
   void writeString(const std::string& path, const std::string& value);
+  // (n) fixed-length strings, padded to the longest.
+  void writeStrings(const std::string& path, const std::vector<std::string>& values);
   // Rank-3 array (n0, n1, n2), data in C order.
   void writeArray3(const std::string& path, const std::vector<double>& data, std::size_t n0,
                    std::size_t n1, std::size_t n2);
@@ -77,6 +79,8 @@ class H5File {
   long readInt(const std::string& path) const;
   std::vector<long> readIntVector(const std::string& path) const;  // any rank, flattened
   std::string readString(const std::string& path) const;
+  // (n) fixed- or variable-length strings.
+  std::vector<std::string> readStrings(const std::string& path) const;
   std::vector<double> readArray(const std::string& path) const;   // any rank, flattened C order
 
   // Checks the root `format` attribute: "KIND/VERSION". Throws H5Error naming the

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "common/files.h"
+#include "common/flexbody.h"
 #include "common/h5io.h"
 #include "common/materials.h"
 #include "common/units.h"
@@ -128,7 +129,7 @@ ShellSpec parseShell(const InputNode& s, const MaterialLibrary& materials, const
 
 // A beam section (section: {file: ...} or an inline shape) into Ks, Ms and its source.
 void parseBeamSection(const InputNode& sec, const MaterialLibrary& materials, BodySpec& body, Matrix6d& Ks,
-                      Matrix6d& Ms, std::string& source) {
+                      Matrix6d& Ms, std::string& source, SectionStressBasis* basis = nullptr) {
   if (sec.has("file")) {
     sec.allowKeys({"file"});
     const std::string path = resolveRelativeTo(sec.file(), sec["file"].asString());
@@ -142,6 +143,8 @@ void parseBeamSection(const InputNode& sec, const MaterialLibrary& materials, Bo
       if (llt.info() != Eigen::Success)
         throw H5Error(path + ": /stiffness/timoshenko is not positive definite");
       if (!(Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
+      // The section's stresses per unit resultant (its /recovery/), for ply stresses at stations.
+      if (basis) *basis = readSectionStressBasis(path);
     } catch (const std::exception& e) {
       sec["file"].fail(std::string("cannot use section file: ") + e.what() +
                        "; expected a section-prep output (format section/1)");
@@ -189,7 +192,7 @@ BeamSpec parseBeam(const InputNode& b, const MaterialLibrary& materials, BodySpe
     beam.elements = b["elements"].asInt();
     if (beam.elements < 1) b["elements"].fail("expected a positive number of elements");
   }
-  parseBeamSection(b["section"], materials, body, beam.Ks, beam.Ms, beam.section_source);
+  parseBeamSection(b["section"], materials, body, beam.Ks, beam.Ms, beam.section_source, &beam.section_basis);
   return beam;
 }
 

@@ -38,6 +38,7 @@ struct BeamSpec {
   Matrix6d Ks = Matrix6d::Zero();  // section stiffness, VABS order
   Matrix6d Ms = Matrix6d::Zero();  // section mass per length
   std::string section_source;      // file path or inline shape name
+  SectionStressBasis section_basis;  // the section file's /recovery/ (empty for inline shapes)
 };
 
 // The fibre reference axis (0 deg) of a shell region, as CalculiX's

@@ -131,7 +131,7 @@ class Stopwatch {
 // its own section and x2 axis. The body file holds one ply table and either
 // shells or beams: a body whose shell regions have different plies, or that
 // mixes shells and beams, gets none (`note` says so).
-StressRecoveryData stressRecoveryData(const Mesh& mesh, const Eigen::MatrixXd& shapes, std::string& note) {
+StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes, std::string& note) {
   StressRecoveryData d;
   const long nm = shapes.cols();
   if (!mesh.triangles.empty()) {
@@ -188,6 +188,20 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const Eigen::MatrixXd& s
         d.beam_resultants.middleRows<6>(6 * e) =
             fe::beamMidpointResultants(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
                                        mesh.beam_x2[static_cast<std::size_t>(e)], mesh.beamProperty(e).Ks) * q;
+      }
+    }
+    // The section's stresses per unit resultant, for ply stresses at stations
+    // (a beam: body; a mesh-file body's beam regions carry no basis yet).
+    if (spec.beam) d.section = spec.beam->section_basis;
+    if (!d.section.empty()) {
+      d.beam_lengths.resize(ne);
+      d.beam_stations.resize(3 * ne, 3);
+      for (long e = 0; e < ne; ++e) {
+        const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+        d.beam_lengths(e) = (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm();
+        d.beam_stations.row(3 * e) = mesh.nodes.row(b[0]);
+        d.beam_stations.row(3 * e + 1) = d.centroids.row(e);
+        d.beam_stations.row(3 * e + 2) = mesh.nodes.row(b[1]);
       }
     }
   }
@@ -844,7 +858,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
   }
   std::string stress_note;
-  if (!imported) body.stress = stressRecoveryData(mesh, body.shapes, stress_note);
+  if (!imported) body.stress = stressRecoveryData(mesh, spec, body.shapes, stress_note);
   if (!stress_note.empty() && rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
   const RigidProperties rp = imported ? importedRigidProperties(*imported) : meshProperties(mesh, false);
   if (spec.general) res.regions = regionSummary(spec, mesh);

@@ -485,6 +485,106 @@ class ConstrainedSolver {
 #endif
 };
 
+// The 3-D strain of one element at the point (r, s), per unit classical strain
+// e and per unit derivative e' (each 6x4, Voigt [11,22,33,23,13,12], engineering
+// shear), from the first-order warping w = V0 e + V1 e' (Hodges 2006, ch. 4;
+// Yu et al. 2002, sec. 3):
+//   Gamma = (Gamma_h V0 + Gamma_e) e + (Gamma_h V1 + Gamma_l V0) e' + Gamma_l V1 e'',
+// the last term left out: e'' vanishes without distributed loads, and it is
+// of second order in the slenderness otherwise.
+struct PointStrain {
+  Matrix64d Se, Sp;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  double weight = 0, theta1_deg = 0;
+};
+
+PointStrain pointStrain(const SectionMesh& mesh, const SectionElement& el, const ElementNodes& en,
+                        const DenseN4& V0, const DenseN4& V1, double r, double s) {
+  const ShapeValues sv = shapeFunctions(el.shape, en.present, r, s);
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  PointStrain p;
+  for (int a = 0; a < en.count; ++a) {
+    const int k = en.slot[a];
+    const Eigen::Vector2d& X = mesh.nodes[en.node[a]];
+    J.row(0) += sv.dNdr[k] * X.transpose();
+    J.row(1) += sv.dNds[k] * X.transpose();
+    p.x += sv.N[k] * X;
+    p.theta1_deg += sv.N[k] * el.theta1_deg[k];
+  }
+  if (!el.theta1_nodal) p.theta1_deg = el.theta1_deg[0];
+  const double det = J.determinant();
+  p.weight = std::abs(det);
+  p.Se = kSel.G0 + p.x.x() * kSel.G2 + p.x.y() * kSel.G3;
+  p.Sp.setZero();
+  for (int a = 0; a < en.count; ++a) {
+    const int k = en.slot[a];
+    const double N2 = (J(1, 1) * sv.dNdr[k] - J(0, 1) * sv.dNds[k]) / det;
+    const double N3 = (-J(1, 0) * sv.dNdr[k] + J(0, 0) * sv.dNds[k]) / det;
+    const Eigen::Matrix<double, 6, 3> Bh = N2 * kSel.P2 + N3 * kSel.P3;
+    const long r0 = 3L * en.node[a];
+    p.Se.noalias() += Bh * V0.middleRows(r0, 3);
+    p.Sp.noalias() += Bh * V1.middleRows(r0, 3) + sv.N[k] * kSel.PL * V0.middleRows(r0, 3);
+  }
+  return p;
+}
+
+// The recovery basis (docs/section-prep.md, "Stress recovery"). For
+// resultants F = [F1, F2, F3, M1, M2, M3] of an unloaded stretch of beam, the
+// equilibrium equations F' = 0, M' + e1 x F = 0 give the derivatives of the
+// classical resultants R = [F1, M1, M2, M3]: R' = [0, 0, F3, -F2]; then
+//   e' = K^-1 R'   and   e = K^-1 (R - B e'),
+// where B = int Gamma_e^T D (Gamma_h V1 + Gamma_l V0) dA is what the first-order
+// field adds to the classical resultants: the recovered stresses integrate to
+// exactly the given R (Gamma_e^T sigma picks sigma11, x2 s13 - x3 s12, x3 s11,
+// -x2 s11), and their shear stresses to F2, F3 by the weak equilibrium the
+// warping solves.
+std::vector<ElementRecovery> recoveryBasis(const SectionMesh& mesh, const DenseN4& V0,
+                                           const DenseN4& V1) {
+  const long n_el = static_cast<long>(mesh.elements.size());
+  std::vector<ElementRecovery> out(n_el);
+  std::vector<Matrix6d> D(n_el);
+  std::vector<Matrix64d> Se(n_el), Sp(n_el);
+  Eigen::Matrix4d Kr = Eigen::Matrix4d::Zero(), B = Eigen::Matrix4d::Zero();
+  for (long ie = 0; ie < n_el; ++ie) {
+    const SectionElement& el = mesh.elements[ie];
+    const SectionMaterial& mat = mesh.materials[el.material];
+    const ElementNodes en = elementNodes(el);
+    const bool tri = el.shape == ElementShape::Triangle;
+    const PointStrain c = pointStrain(mesh, el, en, V0, V1, tri ? 1.0 / 3 : 0.0, tri ? 1.0 / 3 : 0.0);
+    const Eigen::Matrix3d Rm = materialAxes(c.theta1_deg * kDegree, el.theta3_deg * kDegree);
+    D[ie] = rotateVoigtStiffness(mat.C, Rm);
+    out[ie].centroid = c.x;
+    out[ie].axes = isIsotropicMaterial(mat.C) ? materialAxes(c.theta1_deg * kDegree, 0.0) : Rm;
+    Se[ie] = c.Se;
+    Sp[ie] = c.Sp;
+    // The resultants of the field, integrated with the rule the stiffness uses.
+    for (const auto& q : quadratureRule(el.shape, en.count)) {
+      const PointStrain p = pointStrain(mesh, el, en, V0, V1, q.r, q.s);
+      const Matrix6d Dq = el.theta1_nodal
+                              ? rotateVoigtStiffness(mat.C, materialAxes(p.theta1_deg * kDegree,
+                                                                         el.theta3_deg * kDegree))
+                              : D[ie];
+      const Matrix64d Ge = kSel.G0 + p.x.x() * kSel.G2 + p.x.y() * kSel.G3;
+      const Eigen::Matrix<double, 4, 6> GtD = q.w * p.weight * Ge.transpose() * Dq;
+      Kr.noalias() += GtD * p.Se;
+      B.noalias() += GtD * p.Sp;
+    }
+  }
+  // Unit resultants -> R and R' (4x6 selections, columns in the Timoshenko order).
+  Eigen::Matrix<double, 4, 6> R = Eigen::Matrix<double, 4, 6>::Zero(), Rd = R;
+  R(0, 0) = R(1, 3) = R(2, 4) = R(3, 5) = 1;
+  Rd(2, 2) = 1;   // M2' = F3
+  Rd(3, 1) = -1;  // M3' = -F2
+  const Eigen::Matrix4d Kinv = Kr.inverse();
+  const Eigen::Matrix<double, 4, 6> Ed = Kinv * Rd;
+  const Eigen::Matrix<double, 4, 6> E0 = Kinv * (R - B * Ed);
+  for (long ie = 0; ie < n_el; ++ie) {
+    out[ie].strain = Se[ie] * E0 + Sp[ie] * Ed;
+    out[ie].stress = D[ie] * out[ie].strain;
+  }
+  return out;
+}
+
 }  // namespace
 
 Matrix6d sectionMassMatrix(double mu, const Eigen::Vector2d& fm, const Eigen::Matrix2d& sm) {
@@ -603,6 +703,7 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
     P.timoshenko = 0.5 * (T + T.transpose());
     P.has_timoshenko = true;
     P.shear_center = shearCenterFromTimoshenko(P.timoshenko);
+    if (opt.recovery) P.recovery = recoveryBasis(mesh, V0, V1);
   }
   P.cpu_solves = lap();
   if (opt.progress) opt.progress("done", 1.0);
@@ -613,6 +714,16 @@ SectionProperties analyzeSection(const SectionMesh& mesh, const AnalysisOptions&
         "the section analysis produced non-finite numbers: the mesh or the materials are "
         "numerically degenerate (coordinates or moduli of wildly different magnitudes?)");
   return P;
+}
+
+bool isIsotropicMaterial(const Matrix6d& C) {
+  const double tol = 1e-9 * C.cwiseAbs().maxCoeff();
+  const double l2m = C(0, 0), l = C(0, 1), mu = 0.5 * (l2m - l);
+  Matrix6d iso = Matrix6d::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) iso(i, j) = i == j ? l2m : l;
+  for (int i = 3; i < 6; ++i) iso(i, i) = mu;
+  return (C - iso).cwiseAbs().maxCoeff() <= tol;
 }
 
 std::string materialProblem(const SectionMaterial& m) {

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <iostream>
+#include <optional>
+#include <vector>
 
 #include "common/cli.h"
 #include "common/files.h"
@@ -34,8 +36,14 @@ int main(int argc, char** argv) {
                "(variational-asymptotic method, as VABS)"};
   std::string input, output;
   bool quiet = false;
+  std::vector<double> recover;
   app.add_option("input", input, "SECTION.yaml, or a VABS input file (CASE.sg)")->required();
   app.add_option("-o,--output", output, "the HDF5 file to write (format section/1)")->required();
+  app.add_option("--recover", recover,
+                 "F1 F2 F3 M1 M2 M3: also recover the section's stresses, strains and ply failure "
+                 "indices for these resultants (N, N m; /stiffness/timoshenko order), print them per "
+                 "element and write them under /recovered/")
+      ->expected(6);
   app.add_flag("-q,--quiet", quiet, "no summary on stdout, no progress on stderr");
   app.set_version_flag("--version", std::string("section-prep ") + fc::version());
   fc::addInspectOption(app, "section-prep");
@@ -89,9 +97,20 @@ int main(int argc, char** argv) {
     const SectionProperties p = analyzeSection(mesh, opt);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     progress.finish();
-    writeSectionFile(output, p, fc::sha256Files(inputs), input);
+    std::optional<RecoveryRun> run;
+    if (!recover.empty()) {
+      run.emplace();
+      for (int i = 0; i < 6; ++i) run->resultants(i) = recover[i];
+      std::vector<int> element_material;
+      for (const auto& e : mesh.elements) element_material.push_back(e.material);
+      std::vector<std::optional<fc::PlyStrength>> strengths;
+      for (const auto& m : mesh.materials) strengths.push_back(m.strength);
+      run->elements = recoverStresses(p.recovery, element_material, strengths, run->resultants);
+    }
+    writeSectionFile(output, p, fc::sha256Files(inputs), input, mesh, run ? &*run : nullptr);
     if (!quiet) {
       printSummary(std::cout, p);
+      if (run) printRecovery(std::cout, mesh, p, *run);
       std::cout << "\nSolved in " << secs << " s; wrote " << output << "\n";
     }
     return 0;

@@ -4,8 +4,11 @@
 // manual; Hodges 2006, ch. 4) so that VABS inputs map onto it one to one.
 #include <Eigen/Dense>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "common/materials.h"
 
 namespace fc::section {
 
@@ -17,6 +20,8 @@ struct SectionMaterial {
   std::string name;
   Matrix6d C = Matrix6d::Zero();
   double rho = 0.0;
+  // Ply strengths (`strength:` of the material), for recovery's failure indices.
+  std::optional<PlyStrength> strength;
 };
 
 // Why a material cannot be used by section-prep's displacement elements, or "".

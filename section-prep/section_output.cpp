@@ -1,5 +1,7 @@
 #include "section-prep/section_output.h"
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 
@@ -7,10 +9,10 @@
 
 namespace fc::section {
 
-void writeSectionFile(const std::string& path, const SectionProperties& p,
-                      const std::string& inputs_sha256, const std::string& source) {
-  AtomicH5Writer w(path);
-  H5File& f = w.file();
+namespace {
+
+void writeProperties(H5File& f, const SectionProperties& p, const std::string& inputs_sha256,
+                     const std::string& source) {
   writeProvenance(f, "section/1", "section-prep", inputs_sha256);
   f.setAttribute("/", "source", source);
   f.writeMatrix("/stiffness/timoshenko", p.timoshenko);
@@ -29,7 +31,152 @@ void writeSectionFile(const std::string& path, const SectionProperties& p,
   f.writeScalar("/section/area", p.area);
   f.writeInt("/section/nodes", p.n_nodes);
   f.writeInt("/section/elements", p.n_elements);
+}
+
+// A (n0, n1, n2) C-order array from per-element blocks.
+template <typename Get>
+std::vector<double> gather(std::size_t n0, std::size_t n1, std::size_t n2, Get get) {
+  std::vector<double> v(n0 * n1 * n2);
+  for (std::size_t i = 0; i < n0; ++i)
+    for (std::size_t j = 0; j < n1; ++j)
+      for (std::size_t k = 0; k < n2; ++k) v[(i * n1 + j) * n2 + k] = get(i, j, k);
+  return v;
+}
+
+void writeRecoveryBasis(H5File& f, const SectionProperties& p, const SectionMesh& mesh) {
+  const std::size_t ne = p.recovery.size();
+  // Per unit resultant r, each element's stresses in its material axes.
+  std::vector<std::array<Vector6d, 6>> mat_stress(ne), mat_strain(ne);
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int r = 0; r < 6; ++r) {
+      mat_stress[e][r] = voigtToAxes(p.recovery[e].stress.col(r), p.recovery[e].axes, false);
+      mat_strain[e][r] = voigtToAxes(p.recovery[e].strain.col(r), p.recovery[e].axes, true);
+    }
+  static const int ply[3] = {0, 1, 5};
+  f.writeArray3("/recovery/stress", gather(6, ne, 6, [&](auto r, auto e, auto c) { return p.recovery[e].stress(c, r); }), 6, ne, 6);
+  f.writeArray3("/recovery/strain", gather(6, ne, 6, [&](auto r, auto e, auto c) { return p.recovery[e].strain(c, r); }), 6, ne, 6);
+  f.writeArray3("/recovery/ply_stress", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_stress[e][r](ply[c]); }), 6, ne, 3);
+  f.writeArray3("/recovery/ply_strain", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_strain[e][r](ply[c]); }), 6, ne, 3);
+  f.writeArray3("/recovery/material_axes", gather(ne, 3, 3, [&](auto e, auto i, auto j) { return p.recovery[e].axes(j, i); }), ne, 3, 3);
+  f.setAttribute("/recovery/stress", "resultants", std::string("F1, F2, F3, M1, M2, M3"));
+  Eigen::MatrixXd c(ne, 2);
+  std::vector<std::string> names;
+  std::vector<long> index, plies;
+  for (std::size_t e = 0; e < ne; ++e) {
+    c.row(e) = p.recovery[e].centroid.transpose();
+    const int m = mesh.elements[e].material;
+    names.push_back(mesh.materials[m].name);
+    index.push_back(m);
+    plies.push_back(isIsotropicMaterial(mesh.materials[m].C) ? 0 : 1);
+  }
+  f.writeMatrix("/mesh/centroids", c);
+  f.writeStrings("/mesh/material", names);
+  f.writeIntVector("/mesh/material_index", index);
+  f.writeIntVector("/mesh/has_plies", plies);
+  std::vector<std::string> mat_names;
+  Eigen::MatrixXd strength = Eigen::MatrixXd::Zero(mesh.materials.size(), 5);
+  for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
+    mat_names.push_back(mesh.materials[m].name);
+    if (const auto& st = mesh.materials[m].strength) strength.row(m) << st->Xt, st->Xc, st->Yt, st->Yc, st->S12;
+  }
+  f.writeStrings("/materials/names", mat_names);
+  f.writeMatrix("/materials/strength", strength);
+}
+
+void writeRecovered(H5File& f, const RecoveryRun& run) {
+  const long ne = static_cast<long>(run.elements.size());
+  Eigen::MatrixXd s(ne, 6), e(ne, 6), ps(ne, 3), pe(ne, 3);
+  Eigen::VectorXd tw(ne), ms(ne), sr(ne);
+  for (long i = 0; i < ne; ++i) {
+    const RecoveredElement& r = run.elements[i];
+    s.row(i) = r.stress.transpose();
+    e.row(i) = r.strain.transpose();
+    ps.row(i) = r.ply_stress.transpose();
+    pe.row(i) = r.ply_strain.transpose();
+    tw(i) = r.tsai_wu;
+    ms(i) = r.max_stress;
+    sr(i) = std::isfinite(r.strength_ratio) ? r.strength_ratio : 1e300;
+  }
+  f.writeVector("/recovered/resultants", run.resultants);
+  f.writeMatrix("/recovered/stress", s);
+  f.writeMatrix("/recovered/strain", e);
+  f.writeMatrix("/recovered/ply_stress", ps);
+  f.writeMatrix("/recovered/ply_strain", pe);
+  f.writeVector("/recovered/failure_index", tw);
+  f.writeVector("/recovered/max_stress_index", ms);
+  f.writeVector("/recovered/strength_ratio", sr);
+}
+
+}  // namespace
+
+void writeSectionFile(const std::string& path, const SectionProperties& p,
+                      const std::string& inputs_sha256, const std::string& source) {
+  AtomicH5Writer w(path);
+  writeProperties(w.file(), p, inputs_sha256, source);
   w.commit();
+}
+
+void writeSectionFile(const std::string& path, const SectionProperties& p,
+                      const std::string& inputs_sha256, const std::string& source,
+                      const SectionMesh& mesh, const RecoveryRun* run) {
+  AtomicH5Writer w(path);
+  writeProperties(w.file(), p, inputs_sha256, source);
+  if (!p.recovery.empty()) writeRecoveryBasis(w.file(), p, mesh);
+  if (run) writeRecovered(w.file(), *run);
+  w.commit();
+}
+
+void printRecovery(std::ostream& out, const SectionMesh& mesh, const SectionProperties& p,
+                   const RecoveryRun& run) {
+  char buf[400];
+  const Vector6d& F = run.resultants;
+  std::snprintf(buf, sizeof buf,
+                "\nStress recovery for F1 = %.6e N, F2 = %.6e N, F3 = %.6e N, M1 = %.6e N m, "
+                "M2 = %.6e N m, M3 = %.6e N m\n",
+                F(0), F(1), F(2), F(3), F(4), F(5));
+  out << buf;
+  bool any_ply = false, all_strength = true;
+  for (const auto& m : mesh.materials) {
+    if (!isIsotropicMaterial(m.C)) any_ply = true;
+    if (!m.strength) all_strength = false;
+  }
+  if (!any_ply)
+    out << "The section has no plies (every material is isotropic): the 'ply' stresses are in the "
+           "section frame with the beam axis x1 as 1-axis.\n";
+  if (!all_strength) {
+    out << "No strengths for material(s):";
+    for (const auto& m : mesh.materials)
+      if (!m.strength) out << " " << m.name;
+    out << " (no failure index for their elements).\n";
+  }
+  out << "  elem        x2           x3          s11          s22          s33          s23          "
+         "s13          s12     s_11(ply)    s_22(ply)    t_12(ply)   Tsai-Wu   max-stress  str.ratio\n";
+  long worst = -1;
+  for (std::size_t e = 0; e < run.elements.size(); ++e) {
+    const RecoveredElement& r = run.elements[e];
+    const Eigen::Vector2d& c = p.recovery[e].centroid;
+    std::snprintf(buf, sizeof buf, "%6d %12.5e %12.5e", mesh.elements[e].user_id, c.x(), c.y());
+    out << buf;
+    for (int i = 0; i < 6; ++i) { std::snprintf(buf, sizeof buf, " %12.5e", r.stress(i)); out << buf; }
+    for (int i = 0; i < 3; ++i) { std::snprintf(buf, sizeof buf, " %12.5e", r.ply_stress(i)); out << buf; }
+    if (r.has_strength) {
+      std::snprintf(buf, sizeof buf, " %10.4e %10.4e %10.4e", r.tsai_wu, r.max_stress, r.strength_ratio);
+      out << buf;
+      if (worst < 0 || r.tsai_wu > run.elements[worst].tsai_wu) worst = static_cast<long>(e);
+    } else {
+      out << "          -          -          -";
+    }
+    out << "\n";
+  }
+  if (worst >= 0) {
+    const RecoveredElement& r = run.elements[worst];
+    std::snprintf(buf, sizeof buf,
+                  "Largest Tsai-Wu index %.6e in element %d (%s) at (%.6e, %.6e); strength ratio %.6e\n",
+                  r.tsai_wu, mesh.elements[worst].user_id,
+                  mesh.materials[mesh.elements[worst].material].name.c_str(),
+                  p.recovery[worst].centroid.x(), p.recovery[worst].centroid.y(), r.strength_ratio);
+    out << buf;
+  }
 }
 
 namespace {

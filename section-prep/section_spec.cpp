@@ -21,6 +21,7 @@ int materialIndex(SectionSpec& spec, std::map<std::string, int>& index, const Ma
   sm.name = m.name;
   sm.C = m.C;
   sm.rho = m.rho;
+  sm.strength = m.strength;
   spec.materials.push_back(sm);
   return index[m.name] = static_cast<int>(spec.materials.size()) - 1;
 }

@@ -4,7 +4,8 @@ namespace fc::mbs {
 
 void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eigen::VectorXd>& fields, double t) {
   if (fields.size() != r.outputs.size() || fields.empty()) return;
-  const Eigen::VectorXd& f0 = fields[0];  // ply_stress or section_forces
+  // ply_stress (shells, and beams with a section basis) or section_forces.
+  const Eigen::VectorXd& f0 = fields[static_cast<std::size_t>(r.failure_output >= 0 ? r.ply_output : 0)];
   if (r.failure_output >= 0) {
     const Eigen::VectorXd& fi = fields[static_cast<std::size_t>(r.failure_output)];
     if (rows_ == 0) {
@@ -33,8 +34,10 @@ void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eige
 std::vector<EnvelopeDataset> StressEnvelope::datasets(const BodyStressRecovery& r) const {
   std::vector<EnvelopeDataset> d;
   if (rows_ == 0) return d;
-  const std::vector<long>& field = r.outputs[0].dims;  // (n_el, n_plies, 3) or (n_el, 6)
-  const std::string base = r.outputs[0].name;          // ply_stress or section_forces
+  // (n_el, n_plies, 3), (n_stations, n_section_elements, 3) or (n_el, 6)
+  const std::size_t o = static_cast<std::size_t>(r.failure_output >= 0 ? r.ply_output : 0);
+  const std::vector<long>& field = r.outputs[o].dims;
+  const std::string base = r.outputs[o].name;  // ply_stress or section_forces
   if (r.failure_output >= 0) {
     const std::vector<long>& fi = r.outputs[static_cast<std::size_t>(r.failure_output)].dims;
     d.push_back({"failure_index_peak", fi, peak_});

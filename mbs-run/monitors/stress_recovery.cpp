@@ -80,6 +80,7 @@ void BodyStressRecovery::recover(const Eigen::VectorXd& q, std::vector<Eigen::Ve
     case Kind::Beam:
       // Element-major (n_el, 6), the C order of /bodies/NAME/section_forces.
       fields[0] = beamSectionForces(beam_resultants, q);
+      if (section_ply.rows() > 0) recoverBeamPlies(fields);
       break;
   }
 }
@@ -102,6 +103,33 @@ std::shared_ptr<const BodyStressRecovery> shellStressRecovery(const StressRecove
   return r;
 }
 
+Vector6d resultantsAtStation(const Vector6d& mid, double s) {
+  Vector6d r = mid;
+  r(4) += s * mid(2);
+  r(5) -= s * mid(1);
+  return r;
+}
+
+void BodyStressRecovery::recoverBeamPlies(std::vector<Eigen::VectorXd>& fields) const {
+  // Stations (n_el, 3) x section elements (n_se) x [s_11, s_22, t_12], C order.
+  const long ns = n_plies, ne = beam_lengths.size();
+  Eigen::VectorXd& ply = fields[static_cast<std::size_t>(ply_output)];
+  Eigen::VectorXd& fi = fields[static_cast<std::size_t>(failure_output)];
+  ply.resize(3 * 3 * ne * ns);
+  fi.setZero(3 * ne * ns);
+  for (long e = 0; e < ne; ++e) {
+    const Vector6d mid = fields[0].segment<6>(6 * e);
+    for (int j = 0; j < 3; ++j) {
+      const long st = 3 * e + j;
+      const Vector6d R = resultantsAtStation(mid, 0.5 * (j - 1) * beam_lengths(e));
+      ply.segment(3 * ns * st, 3 * ns).noalias() = section_ply * R;
+      for (long k = 0; k < ns; ++k)
+        if (section_has_strength[static_cast<std::size_t>(k)])
+          fi(st * ns + k) = tsaiWuIndex(section_tsai_wu[static_cast<std::size_t>(k)], ply.segment<3>(3 * (st * ns + k)));
+    }
+  }
+}
+
 std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecoveryData& d, const std::string& file) {
   if (!d.hasBeam()) throw std::invalid_argument(file + ": no beam section resultants");
   auto r = std::make_shared<BodyStressRecovery>();
@@ -110,6 +138,34 @@ std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecover
   r->n_elements = d.centroids.rows();
   r->beam_resultants = d.beam_resultants;
   r->outputs.push_back({"section_forces", {r->n_elements, 6}});
+  if (d.section.empty()) return r;
+  // Ply stresses and Tsai-Wu at the stations from the section's basis. A ply
+  // material without strengths is an error (the index is what was asked for);
+  // an isotropic element without them gets stresses and an index of 0.
+  const SectionStressBasis& s = d.section;
+  const long ns = s.size();
+  r->n_plies = ns;
+  r->section_ply = s.ply_stress;
+  r->beam_lengths = d.beam_lengths;
+  r->stations = d.beam_stations;
+  r->section_has_strength.assign(static_cast<std::size_t>(ns), 0);
+  r->section_tsai_wu.resize(static_cast<std::size_t>(ns));
+  for (long k = 0; k < ns; ++k) {
+    const Strength5 st = s.strength.row(k).transpose();
+    if ((st.array() > 0).all()) {
+      r->section_has_strength[static_cast<std::size_t>(k)] = 1;
+      r->section_tsai_wu[static_cast<std::size_t>(k)] = tsaiWuCoefficients(st);
+    } else if (s.has_plies[static_cast<std::size_t>(k)]) {
+      throw std::invalid_argument(file + ": the beam's section material '" + s.material[static_cast<std::size_t>(k)] +
+                                  "' has no strengths: outputs.stresses needs them for the Tsai-Wu index of its plies; "
+                                  "give it strength: {Xt, Xc, Yt, Yc, S12} and rerun section-prep and fe-prep");
+    }
+  }
+  const long n_st = 3 * r->n_elements;
+  r->ply_output = static_cast<int>(r->outputs.size());
+  r->outputs.push_back({"ply_stress", {n_st, ns, 3}});
+  r->failure_output = static_cast<int>(r->outputs.size());
+  r->outputs.push_back({"failure_index", {n_st, ns}});
   return r;
 }
 

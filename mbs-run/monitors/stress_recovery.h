@@ -84,10 +84,33 @@ struct BodyStressRecovery {
 
   // Beams: (6 n_el, n_modes) midpoint section resultants per unit modal coordinate.
   Eigen::MatrixXd beam_resultants;
+  // Beams whose section has a recovery basis (SectionStressBasis): the ply
+  // stresses of every section element at 3 stations per element (its first
+  // node, midpoint, second node); n_plies then counts section elements, so a
+  // failure location's (element, ply) is (station, section element).
+  Eigen::MatrixXd section_ply;               // (3 n_se, 6) per unit resultant
+  Eigen::VectorXd beam_lengths;              // (n_el)
+  Eigen::MatrixXd stations;                  // (3 n_el, 3) body frame, written as /bodies/NAME/stations
+  std::vector<char> section_has_strength;    // (n_se)
+  std::vector<TsaiWu> section_tsai_wu;       // (n_se), unused where no strength
+  // The output holding the stresses that go with the failure index (the
+  // envelope's *_at_peak): 0 for shells, the beam's ply_stress otherwise.
+  int ply_output = 0;
 
   // fields[i] (outputs[i].size() values, C order) at modal coordinates q.
   void recover(const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>& fields) const;
+
+ private:
+  void recoverBeamPlies(std::vector<Eigen::VectorXd>& fields) const;
+
+ public:
 };
+
+// Section resultants [N, V2, V3, T, M2, M3] at a station s along an element
+// (from its midpoint, along the element's x1) from the midpoint values R, by
+// the equilibrium of an element without distributed load, M2' = V3,
+// M3' = -V2 (the FE model's masses are at the nodes): R + s [0,0,0,0,V3,-V2].
+Vector6d resultantsAtStation(const Vector6d& mid, double s);
 
 // A body's recovery for its first n_modes modes from the data of its file
 // (readStressData): a shell's ply stresses, or a beam's section forces. Throws

@@ -242,7 +242,8 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
     if (b.modes > 0) tr.w = f.readMatrix(g + "modal_coordinates");
     if (tr.r.rows() != t.size() || tr.p.rows() != t.size() || (b.modes > 0 && tr.w.rows() != t.size()))
       throw std::runtime_error(results_path + ": " + g + " has not one row per output time");
-    if (b.stress && b.stress->failure_output >= 0 && f.exists(g + "failure_index")) {
+    if (b.stress && b.stress->kind == BodyStressRecovery::Kind::Shell && b.stress->failure_output >= 0 &&
+        f.exists(g + "failure_index")) {
       const std::vector<hsize_t> sh = f.shape(g + "failure_index");
       const long ne = b.stress->n_elements, np = b.stress->n_plies;
       if (sh.size() != 3 || sh[0] != static_cast<hsize_t>(ts.size()) || sh[1] != static_cast<hsize_t>(ne) ||

@@ -302,6 +302,10 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
       f.writeIntVector(g + "/fixed_interface_modes", model.bodies[k].flex->fixed_interface_modes);
     }
   }
+  // A beam's stations, where its ply stresses are recovered (body frame).
+  for (const auto& body : model.bodies)
+    if (body.stress && body.stress->stations.rows() > 0)
+      f.writeMatrix("/bodies/" + body.name + "/stations", body.stress->stations);
   // The envelope of the recovered stresses over every output row (stress_envelope.h).
   for (std::size_t k = 0; k < model.bodies.size() && k < r.stress_envelopes.size(); ++k) {
     if (!model.bodies[k].stress) continue;
