@@ -82,7 +82,7 @@ bool keyDimension(const std::string& key, const std::string& parent_type, Dimens
       {"stabilization_frequency", kRate}, {"angular_velocity", kRate},
       // motion and loads
       {"velocity", kVelocity}, {"g", kAcceleration}, {"force", kForce}, {"torque", kTorque}, {"value", kTorque},
-      {"stiffness", kLinearStiffness},
+      {"stiffness", kLinearStiffness}, {"EI", Dimension{3, 1, -2}},
       {"modal_coordinates", kModal}, {"modal_velocities", kModalRate},
   };
   if (key == "damping") {
