@@ -1,6 +1,6 @@
 #pragma once
-// Modal geometric stiffness of the body's inertial load cases (issue 15;
-// docs/body-file.md "Geometric stiffness" for the derivation and sources).
+// Modal geometric stiffness of the body's inertial load cases
+// (docs/body-file.md "Geometric stiffness" for the derivation and sources).
 //
 // A body whose frame moves with origin acceleration a0 (body axes, gravity
 // folded in as a0 - g), angular velocity omega and angular acceleration alpha

@@ -100,7 +100,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     // SLEPc's default basis size max(2 nev, nev + 15), but with its residual
     // vector no larger than the DOF that carry mass: a Krylov vector beyond
     // them has an M-norm of round-off, which SLEPc reports as "indefinite
-    // matrix" (issue 16).
+    // matrix".
     const PetscInt ncv = static_cast<PetscInt>(std::max<long>(nev, std::min<long>(std::max<long>(2 * nev, nev + 15), nev + (massive - nev) / 2)));
     check(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT), "EPSSetDimensions");
     check(EPSSetTolerances(eps, request.tolerance, 1000), "EPSSetTolerances");

@@ -1,6 +1,6 @@
 #pragma once
 // Static responses of the reduced (reference-held) body, and the static
-// truncation error of a set of modes at the interfaces (issue 16, "modes
+// truncation error of a set of modes at the interfaces ("modes
 // chosen by error").
 //
 // A unit load e_k (k: force x, y, z, moment x, y, z) at an interface reaches

@@ -60,7 +60,7 @@ BENCHMARK(BM_ReadFlexBody)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
-// Geometric stiffening (issue 15): K_G(p) = sum of the 12 cases and its force
+// Geometric stiffening: K_G(p) = sum of the 12 cases and its force
 // K_G w, what System::derivative adds per stiffened body and evaluation (the
 // velocity and the acceleration cases, the two passes together).
 void BM_GeometricStiffeningForce(benchmark::State& state) {

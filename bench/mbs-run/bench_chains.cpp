@@ -1,4 +1,4 @@
-// Issue 17, long rigid chains: N rods (bench/mbs-run/chain_scene.h) on
+// N rods (bench/mbs-run/chain_scene.h) on
 // revolute joints released from the horizontal, N = 10, 50, 200, 1000.
 // Prints markdown tables for docs/benchmarks.md:
 //  1. us per right-hand side (and per body): the joint-coordinate path

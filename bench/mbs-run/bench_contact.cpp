@@ -1,4 +1,4 @@
-// Issue 16: the contact monitor's cost per output row on meshes of the SAR
+// the contact monitor's cost per output row on meshes of the SAR
 // panels' size (2.0 x 1.3 m, element size h = 0.1 .. 0.0125 m, 2 triangles per
 // h x h cell, 30 smooth modes with ~5 mm deflection), against a truss (two
 // beam elements, 0.6 m) in three places: 5 mm above and parallel to the panel

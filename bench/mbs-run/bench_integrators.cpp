@@ -1,4 +1,4 @@
-// Issue 17's measurements, one table each, printed as markdown
+// Measurements of the integrators, one table each, printed as markdown
 // (docs/benchmarks.md quotes them):
 //  A. a flexible beam pendulum (pinned-root modes of a Hermite beam, written
 //     by tests/mbs-run/beam_body.h) with 4..200 modes: CPU per simulated
@@ -11,7 +11,7 @@
 //     AlSolver's automatic switch (kMaxDenseSchurRows) should sit;
 //  B. the stiff beam pendulum (4 modes, first mode 145 Hz) at rtol 1e-6:
 //     real-time factor of `dopri5` and `imex`;
-// (Rigid chains, issue 17's third part: bench_chains.cpp.)
+// (Rigid chains, the third part: bench_chains.cpp.)
 // Usage: bench_integrators [A|N|S|B]... [modes] (all when none given; modes:
 // only that row of A, for profiling; "AE": A's per-evaluation rows only).
 #include <cmath>
@@ -108,7 +108,7 @@ void modes(int only, bool evaluations_only) {
     const double tight = nm <= 16 ? 1e-6 : 1e-4;
     const Results ref = run(file, nm, "imex", tight, t_end);
     for (const char* integ : {"imex", "dopri5"}) {
-      if (std::string(integ) == "dopri5" && nm > 16) continue;  // 119 s per simulated s at 64 modes (issue 17)
+      if (std::string(integ) == "dopri5" && nm > 16) continue;  // 119 s per simulated s at 64 modes
       for (double rtol : {1e-4, 1e-6}) {
         if (rtol < tight) continue;
         const Results r = (std::string(integ) == "imex" && rtol == tight) ? ref : run(file, nm, integ, rtol, t_end);

@@ -1,4 +1,4 @@
-// Issue 15: what geometric stiffening costs per right-hand-side evaluation.
+// what geometric stiffening costs per right-hand-side evaluation.
 // A flexible body spun by a driven hub (revolute at its interface P0, constant
 // rate), System::derivative at one state, with `geometric_stiffening` off and
 // on, for 4, 14 and 56 modes. On: the six velocity cases from the state, then a

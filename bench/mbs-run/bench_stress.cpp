@@ -1,4 +1,4 @@
-// Issue 14: what stress recovery costs. One composite panel of the SAR's size
+// what stress recovery costs. One composite panel of the SAR's size
 // (14 modes, 1 000 triangles, 4 plies) moving freely with its modes excited,
 // 2 s at output_step 1 ms (2 001 rows), streamed to a results file as the
 // executable does: the run without `outputs.stresses`, with it, and the

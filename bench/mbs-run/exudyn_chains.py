@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 17: rigid chains side by side with Exudyn's kinematic tree + DOPRI5.
+"""rigid chains side by side with Exudyn's kinematic tree + DOPRI5.
 
 Not part of the build or CI: it needs an Exudyn build (see docs/benchmarks.md,
 "Rigid chains", for how it was built here from the Exudyn 1.11 sources with

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Does the flexible SAR antenna (reconstruction v2) follow the same path after
-the knee's minimum whatever the discretisation? (issue 13, "robustness")
+the knee's minimum whatever the discretisation? ("robustness")
 
 Runs phase 1 (0-10 s) of a scene (default sar-isotropic.yaml) varying one
 factor at a time around the scene as committed: the integrator tolerance, the

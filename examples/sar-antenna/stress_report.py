@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Loads and ply failure of a SAR deployment run (issue 14; docs/sar-antenna.md, "Loads and ply failure").
+"""Loads and ply failure of a SAR deployment run (docs/sar-antenna.md, "Loads and ply failure").
 
   /usr/bin/python3 stress_report.py --run RESULTS.h5:LABEL:SCENE.yaml [--run ...] [--outdir DIR] [--markdown FILE]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed-versus-accuracy study of the flexible SAR antenna (issue 7).
+"""Speed-versus-accuracy study of the flexible SAR antenna.
 
 Sweeps, one factor at a time around the paper's model (86 triangles and 14
 modes per panel, 2 modes per truss, rtol 1e-6) plus a few combined points:
@@ -60,7 +60,7 @@ TRUSS_MODES = [0, 2]
 RTOLS = [1e-3, 1e-5, 1e-6, 1e-8]  # with the presets' 1e-4 and 1e-7
 MAX_MODES = max(PANEL_MODES)
 PANELS = {"B2": "panel2_iso", "B3": "panel3_iso"}
-# --hinges distributed (issue 16): the hinge pins of each panel become
+# --hinges distributed: the hinge pins of each panel become
 # distributing (RBE3) patches of the nodes within HINGE_RADIUS of their
 # projection, instead of acting on one node each (a point load on a plate,
 # which has no converged answer). Truss ends stay on one node: they are
@@ -68,7 +68,7 @@ PANELS = {"B2": "panel2_iso", "B3": "panel3_iso"}
 HINGES = {"panel2_iso": ["S1", "S4", "S8", "S12"], "panel3_iso": ["S8", "S12"]}
 HINGE_RADIUS = 0.1
 TRUSSES = {f"B{k}": f"truss_B{k}" for k in range(4, 13)}
-# --model cb (issue 16): every joint interface of a panel (hinge pins and truss ends) is a distributing
+# --model cb: every joint interface of a panel (hinge pins and truss ends) is a distributing
 # (RBE3) patch of the nodes in a bracket footprint, and all of them are the pinned boundary of a
 # Craig-Bampton basis (reduction: craig_bampton, `modes: all` in the scene), so the static response to the
 # joint forces is exact at every mesh and every mode count. Footprint: the square of half-side
@@ -432,7 +432,7 @@ def main():
     ap.add_argument("--reuse", action="store_true", help="keep results newer than their scene and mbs-run")
     ap.add_argument("--model", "--hinges", dest="hinges", choices=["node", "distributed", "cb"], default="node",
                     help="panel joints on one node each (the paper's model), hinge pins as distributing patches "
-                         "(distributed), or every joint a distributing patch on a Craig-Bampton basis (cb; issue 16)")
+                         "(distributed), or every joint a distributing patch on a Craig-Bampton basis (cb)")
     ap.add_argument("--compare", metavar="DIR:LABEL",
                     help="another study's output folder (its summary.csv): its Pareto front is drawn beside this one")
     ap.add_argument("--fe-prep", help="fe-prep executable (default: BUILD/fe-prep/fe-prep)")
@@ -720,15 +720,15 @@ def write_doc(args, runs, unique, res, ref, scene_src):
              "below this scatter and the distances in the table above (blue band in the plot) are not ranked by "
              "this study.\n")
       L.append("The same study with the panels' hinge pins as distributing (RBE3) patches, which removes the "
-               "point loads: [accuracy-distributed.md](accuracy-distributed.md) (issue 16).\n")
+               "point loads: [accuracy-distributed.md](accuracy-distributed.md).\n")
       L.append("The model rebuilt with every joint on a distributing patch and Craig-Bampton panels, and its mesh "
                "and mode self-convergence: [accuracy-cb.md](accuracy-cb.md); its Pareto front is drawn beside this "
-               "one at the end of this page (issue 16).\n")
+               "one at the end of this page.\n")
     elif is_cb(args):
       L += cb_convergence_text(args, R)
     else:
       L.append("The panels hang on distributing (RBE3) hinge patches of radius "
-               f"{HINGE_RADIUS:g} m (`--hinges distributed`, issue 16); the truss ends still act on one node each, "
+               f"{HINGE_RADIUS:g} m (`--hinges distributed`); the truss ends still act on one node each, "
                "and neither sequence falls steadily. With every joint on a bracket patch and Craig-Bampton panels "
                "both do: [accuracy-cb.md](accuracy-cb.md).\n")
     L.append("## Measured runs\n")
@@ -1154,7 +1154,7 @@ def compare_fronts(args, unique, res, front):
         keep = sorted(pareto(pts), key=lambda i: pts[i][0])
         other[key] = [(label_of(rows[i]), *pts[i]) for i in keep]
         ax.plot(*zip(*pts), "o", color="C0", mfc="none", ms=4)
-        ax.plot(*zip(*[pts[i] for i in keep]), "o-", color="C0", ms=6, label=label + " (issue 16)")
+        ax.plot(*zip(*[pts[i] for i in keep]), "o-", color="C0", ms=6, label=label)
         ax.plot(*zip(*mine), "s-", color="0.45", ms=6, label="the paper's model (one node per joint)")
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -1165,7 +1165,7 @@ def compare_fronts(args, unique, res, front):
     fig.tight_layout()
     fig.savefig(os.path.join(args.img, "accuracy_pareto_fronts.png"), dpi=110)
     plt.close(fig)
-    L = ["## The new Pareto front beside the old one (issue 16)\n"]
+    L = ["## The new Pareto front beside the old one\n"]
     L.append("![both Pareto fronts](img/accuracy_pareto_fronts.png)\n")
     L.append(f"Grey: this page's front (the paper's model: every joint on one node, free-interface modes). Blue: "
              f"{label}, the study in [accuracy-cb.md](accuracy-cb.md) (raw numbers `{os.path.relpath(folder, HERE)}"

@@ -1,7 +1,7 @@
 #pragma once
 // Geometric (membrane-stress) stiffness of the flat laminated DKT/DST shell
-// triangle (shell_triangle.h), for fe-prep's geometric_stiffness (issue 15;
-// docs/elements.md "Geometric stiffness of the shell triangle").
+// triangle (shell_triangle.h), for fe-prep's geometric_stiffness
+// (docs/elements.md "Geometric stiffness of the shell triangle").
 //
 // A membrane prestress N = [N_xx, N_yy, N_xy] (constant over the element, in its
 // laminate axes) does work through the second-order part of the Green-Lagrange

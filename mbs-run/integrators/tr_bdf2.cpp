@@ -30,7 +30,7 @@ class TrBdf2 final : public Integrator {
   // The Newton error is systematic, so it accumulates step after step: with
   // a fixed 0.05 (and stage slopes from the stage relation, see newton()) a
   // flexible pendulum gained 1e-2 J in 1 000 steps at rtol 1e-4, against
-  // 3e-9 J with 0.01 (issue 17).
+  // 3e-9 J with 0.01.
   TrBdf2(Rhs f, const Tolerances& tol)
       : f_(std::move(f)),
         tol_(tol),
@@ -133,7 +133,7 @@ class TrBdf2 final : public Integrator {
   // the error estimate nor the next step sees it; it is a fixed linear map
   // of the predictor's error (simplified Newton stops after one or two
   // corrections), so it acts as a change of the method, not as noise. On a
-  // clamped-root beam on a hinge (issue 17) that changed method was
+  // clamped-root beam on a hinge that changed method was
   // unstable on the frame-mode motion at 1.3e4-1.8e4 rad/s: at rtol 1e-4 the
   // energy grew at that rate from the first millisecond (accepted steps,
   // error estimates below 1), at rtol 1e-6 after 0.47 s (tip 2.2 mm off a
@@ -154,7 +154,7 @@ class TrBdf2 final : public Integrator {
       if (it == 0) {
         // No contraction rate is known after one correction, and none may be
         // borrowed from an earlier solve: a stale Jacobian or a new
-        // configuration changes it (issue 17: a 16-mode pendulum ended
+        // configuration changes it (a 16-mode pendulum ended
         // "completed" 9.9 m off).
         // One correction suffices only when it is already at rounding level.
         if (nrm < 1e-3 * kappa) {

@@ -20,7 +20,7 @@ QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol) {
   // absolute values and lever arms: 6x it on the 16-mode beam pendulum,
   // which would loosen the check where it must catch wrong runs); the
   // absolute part atol sum |g_i| is what a system whose energy terms are
-  // still small against their slope needs (issue 17: a 1 000-rod chain just
+  // still small against their slope needs (a 1 000-rod chain just
   // released). Floors: 10 steps (a short run's few steps still carry an
   // error) and the rounding of the energy terms themselves (1e-13 of their
   // size); plus 1e-12 J absolute: the energies of bodies at rest are

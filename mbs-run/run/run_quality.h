@@ -1,6 +1,6 @@
 #pragma once
 // Whether a finished run's own invariants say its answer is as accurate as
-// its tolerances ask (issue 17: no run may report `completed` with a wrong
+// its tolerances ask (no run may report `completed` with a wrong
 // answer). Two checks a wrong integration cannot pass unnoticed:
 // - the energy balance T + V + D - W over each event-free segment, which the
 //   exact solution keeps constant;
@@ -13,7 +13,7 @@
 //   the local errors allowed per step can do to E, all adding up. The atol
 //   part matters where E is still small but steep in the state: a 1 000-rod
 //   chain just released (0.48 J) whose rod heights may each be off by atol,
-//   1e-12 m x 0.98 N per rod and step (issue 17). A run that loses accuracy
+//   1e-12 m x 0.98 N per rod and step. A run that loses accuracy
 //   to something the error estimate does not see - an unconverged Newton
 //   stage, a stale Jacobian, an instability - exceeds it by orders of
 //   magnitude; and never more than kMaxRelativeEnergyError of the largest

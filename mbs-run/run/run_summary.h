@@ -43,7 +43,7 @@ struct RunSummary {
   };
   Peak peak_reaction_force, peak_reaction_torque, peak_violation, peak_modal_coordinate;
   // Peak over the output rows of each mode's energy (modalEnergies), per body
-  // (empty for rigid bodies): which modes the run excited (issue 16).
+  // (empty for rigid bodies): which modes the run excited.
   std::vector<Eigen::VectorXd> peak_modal_energy;
   // Craig-Bampton bodies: peak over the output rows of each fixed-interface
   // mode's strain energy lambda_j eta_j^2 / 2, eta = F^T q (flexible_body.h);

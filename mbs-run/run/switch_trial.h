@@ -1,11 +1,11 @@
 #pragma once
-// `integrator: auto`'s measured choice (issue 17). When Dormand-Prince is held
+// `integrator: auto`'s measured choice. When Dormand-Prince is held
 // at its stability boundary, TR-BDF2 may or may not do better: it is cheaper
 // only if its accuracy-bound steps are longer than the explicit stability-
 // bound ones, and it is wrong where its numerical damping changes the physics
 // (a clamped-root body on a hinge: the frame rotation and the modes span a
 // stiff, gyroscopically stabilised motion that damping destabilises; the
-// 16-mode pendulum of issue 17 ended 5.6e6 m off). So before switching, both
+// 16-mode pendulum ended 5.6e6 m off). So before switching, both
 // methods integrate the same window from the same state, and the switch is
 // made only if the implicit method (IMEX for scenes with modes, else
 // TR-BDF2) took less CPU time (all its work included: Jacobian, modal

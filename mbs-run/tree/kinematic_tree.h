@@ -1,6 +1,6 @@
 #pragma once
 // Minimal-coordinate dynamics of an open tree of rigid bodies on revolute and
-// prismatic joints (issue 17): one joint coordinate per moving body instead of
+// prismatic joints: one joint coordinate per moving body instead of
 // the constrained path's 6 coordinates and 5 constraint rows, with
 // Featherstone's Articulated-Body Algorithm (Featherstone, Rigid Body Dynamics
 // Algorithms, Springer 2008, table 7.1), O(N) per evaluation.

@@ -264,7 +264,7 @@ TEST(FlexBodyFormat, RigidBodyFileWithoutModes) {
 
 }  // namespace
 
-// --- hardening (issues 11 and 17) -------------------------------------------------
+// --- hardening -------------------------------------------------
 
 TEST(FlexBodyHardening, SingularInertiaIsRefusedNamingTheBodyAndTheCause) {
   // Point masses on a line, no rotary inertia: nothing resists a spin about it.
@@ -358,7 +358,7 @@ TEST(FlexBodyHardening, AbsurdlyLargeNumbersAreNamedOnRead) {
   }
 }
 
-// /inertia/ is what the invariants imply (issue 16, honest inertia): a file in
+// /inertia/ is what the invariants imply (honest inertia): a file in
 // which they disagree is refused on read, naming what disagrees. Each of the
 // rigid invariants scaled within the 1e30 bound (x 1e3, and a rotary inertia
 // doubled) used to run as a different body from the one /inertia/ reports.

@@ -114,7 +114,7 @@ TEST(Input, ClosestMatch) {
   EXPECT_EQ(fc::closestMatch("zzz", {"isotropic", "orthotropic"}), "");
 }
 
-// --- hardening (issue 11): what yaml-cpp accepts but flexcomp must refuse ----------
+// --- hardening: what yaml-cpp accepts but flexcomp must refuse ----------
 
 TEST(InputHardening, DuplicateKeysNameBothLocations) {
   auto e = errorOf([] { InputNode::loadString("sim:\n  t_end: 1\n  rtol: 1e-6\n  t_end: 2\n", "d.yaml"); });

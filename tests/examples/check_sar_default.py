@@ -1,4 +1,4 @@
-"""The SAR example's default model, the rebuilt one (issue 16), as `make` builds it
+"""The SAR example's default model, the rebuilt one, as `make` builds it
 (check_sar_default.py SAR_EXAMPLE_DIR WORK_DIR BUILD_DIR).
 
 Copies the example, then asks its own Makefile for out/results/sar-isotropic-cb.h5:

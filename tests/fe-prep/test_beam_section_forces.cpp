@@ -1,4 +1,4 @@
-// Beam section forces from a run (issue 14): a cantilever clamped to the
+// Beam section forces from a run: a cantilever clamped to the
 // ground under a static tip force in mbs-run, settled by heavy modal damping.
 // Reference nobody here wrote: statics, M(x) = P (L - x), V = P, N = T = 0,
 // and the clamp's reaction moment P L. Recovered by the mode-displacement

@@ -1,4 +1,4 @@
-// fe-prep's distributed interfaces side by side with CalculiX 2.20 (issue 16):
+// fe-prep's distributed interfaces side by side with CalculiX 2.20:
 // a 1 x 0.65 m, 2 mm panel clamped at two hinge points 70 mm above its
 // mid-surface through distributing (RBE3) patches of radius 0.1 m, and loaded
 // at a third raised point T at the far edge through a distributing or a rigid

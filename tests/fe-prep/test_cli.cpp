@@ -166,7 +166,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"yaml", "modes: 10", "modes: [10", "14:1: invalid YAML"}),
     [](const ::testing::TestParamInfo<BadInput>& i) { return std::string(i.param.name); });
 
-// Many modes of a thin panel (issue 16). Its mass matrix is singular (the
+// Many modes of a thin panel. Its mass matrix is singular (the
 // drilling rotations carry none) and its highest modes lie tens of kHz up:
 // 600 of 1345 modes with mass failed with SLEPc's raw "indefinite matrix"
 // trace before its basis size was kept within the DOF with mass; 900 still

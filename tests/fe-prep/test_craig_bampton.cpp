@@ -1,4 +1,4 @@
-// Craig-Bampton bodies (issue 16, contracts.md reduction: craig_bampton): two
+// Craig-Bampton bodies (contracts.md reduction: craig_bampton): two
 // 1 m steel beam bodies welded end to end in mbs-run are one 2 m cantilever.
 // References nobody here wrote: Timoshenko's cantilever deflection
 // P L^3 / 3EI + P L / (kappa G A) (kappa: Cowper's solid-circle factor), and

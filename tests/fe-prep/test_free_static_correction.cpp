@@ -1,4 +1,4 @@
-// The static correction of a free body (inertia relief, issue 16) in a run:
+// The static correction of a free body (inertia relief) in a run:
 // a 2 m steel rod floating free (no joints, no gravity) pushed by a 1 N step
 // force across its tip. Its elastic tip deflection (in the body frame) settles,
 // with critical modal damping, at the inertia-relief static deflection F c,

@@ -1,4 +1,4 @@
-// Geometric stiffness of fe-prep (issue 15): the beam element's geometric
+// Geometric stiffness of fe-prep: the beam element's geometric
 // stiffness against Euler's buckling load, the inertial load cases' axial forces
 // against statics, and the modal data of a cantilever spinning about its root
 // against an independent rotating-beam eigen-analysis and published tables.
@@ -117,7 +117,7 @@ TEST(GeometricStiffness, RotatingBeamReferenceMatchesPublishedTables) {
   //     (J. Appl. Mech. 49 (1982) 197-202) and Hodges & Rutkowski (AIAA J. 19
   //     (1981) 1459-1466), as quoted from memory by the session that wrote this
   //     test. The tables themselves could not be found in the reference
-  //     material searched for issue 15 (public pages, code and documentation
+  //     material searched  (public pages, code and documentation
   //     corpora, and an exact search for the values): only the speed-0 column
   //     was found in print, 3.51602 / 22.0345 / 61.6972 (Int. J. Mech. Mater.
   //     Eng. 10 (2015), doi 10.1186/s40712-015-0040-0, table 1, uniform beam).

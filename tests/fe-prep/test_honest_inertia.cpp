@@ -1,4 +1,4 @@
-// Honest inertia (issue 16): /inertia/ holds the mass, centre and inertia of the
+// Honest inertia: /inertia/ holds the mass, centre and inertia of the
 // body mbs-run simulates from the file, for every mass option. Reference nobody
 // here wrote: a rigid pendulum whose properties are read from the file's
 // /inertia/ must swing exactly as the (very stiff) flexible one, and the exact
@@ -106,7 +106,7 @@ TEST(HonestInertia, RigidPendulumFromTheFilesInertiaSwingsAsTheFlexibleBody) {
     EXPECT_LT(diff, 1e-6) << option;
     if (option == "lumped") {
       // The discrimination: a rigid pendulum with the exact rod inertia (what
-      // /inertia/ held before issue 16) is far off the lumped flexible one.
+      // /inertia/ held before) is far off the lumped flexible one.
       const Eigen::Vector3d ce = b.exact_center_of_mass;
       const Eigen::Matrix3d Je =
           b.exact_inertia_tensor - b.exact_mass * (ce.dot(ce) * Eigen::Matrix3d::Identity() - ce * ce.transpose());

@@ -1,4 +1,4 @@
-// Distributed interfaces (issue 16, contracts.md fe-prep "Distributed
+// Distributed interfaces (contracts.md fe-prep "Distributed
 // interfaces"): rigid (RBE2) patches move rigidly, distributing (RBE3) ones
 // are the weighted least-squares fit of their nodes and add no stiffness, a
 // held distributing interface holds its point, and raised hinge pins on a

@@ -1,5 +1,5 @@
-// Residual-flexibility (static) correction of free-interface bases (issue 16,
-// modes: {count: N, static_correction: ...}; fe-prep/residual_flexibility.h)
+// Residual-flexibility (static) correction of free-interface bases
+// (modes: {count: N, static_correction: ...}; fe-prep/residual_flexibility.h)
 // against references nobody here wrote:
 //  - a steel cantilever's tip compliance, Timoshenko's L^3/3EI + L/(kappa G A),
 //    held by 2 modes + the correction to rounding (6 modes alone miss 0.3 %);

@@ -1,4 +1,4 @@
-// Modes chosen by error (issue 16): the static truncation error at the
+// Modes chosen by error: the static truncation error at the
 // interfaces against beam theory. A cantilever's tip compliance is
 // L^3/3EI + L/(kappa G A) (Timoshenko) and mode j of an Euler-Bernoulli
 // cantilever carries 12 / beta_j^4 of the static tip deflection (beta_1 L =

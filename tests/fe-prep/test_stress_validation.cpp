@@ -1,5 +1,5 @@
 // Ply stresses and Tsai-Wu indices through the whole chain (fe-prep strain
-// modes -> mbs-run recovery) against references nobody here wrote (issue 14):
+// modes -> mbs-run recovery) against references nobody here wrote:
 //  (a) classical lamination theory on a cantilever panel under a static tip
 //      load, recovered from an mbs-run run that settles under heavy modal
 //      damping, with the clamp's reaction moment equal to P L;

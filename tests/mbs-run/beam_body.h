@@ -35,7 +35,7 @@ struct BeamSpec {
   // condition of a hinge, as fe-prep's "pin").
   bool pinned_root = false;
   // false: no rotary inertia at the nodes (a section whose bending rotary
-  // inertia is neglected, issue 17): the rotations carry no mass and are
+  // inertia is neglected): the rotations carry no mass and are
   // condensed statically (exact for such a lumped mass), leaving one mode per
   // free translational dof.
   bool rotary_inertia = true;

@@ -1,5 +1,5 @@
 #pragma once
-// Issue 17's independent reference for rigid chains: the planar N-link
+// the independent reference for rigid chains: the planar N-link
 // pendulum of uniform links in absolute link angles phi_i (from the +x axis
 // towards +z, in the x-z plane), from d'Alembert's principle on the links'
 // centres p_k = sum_{j<k} l u(phi_j) + l/2 u(phi_k), u = (cos, sin):

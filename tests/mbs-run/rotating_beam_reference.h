@@ -1,5 +1,5 @@
 #pragma once
-// Independent reference for geometric stiffening (issue 15): a converged
+// Independent reference for geometric stiffening: a converged
 // Euler-Bernoulli finite-element eigen-analysis of a uniform cantilever spinning
 // about an axis through its root, perpendicular to the beam, written here from
 // the textbook equations and sharing no code with fe-prep or mbs-run.

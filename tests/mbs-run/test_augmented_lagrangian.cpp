@@ -220,7 +220,7 @@ TEST(AugmentedLagrangianProjection, VelocityProjectionIsMassOrthogonal) {
 namespace fc::mbs {
 namespace {
 
-// Issue 17: a floating-frame flexible body with mass-normalised modes has an
+// a floating-frame flexible body with mass-normalised modes has an
 // arrow mass block (six rigid rows, a diagonal modal block), which the solver
 // factorises in O(modes) by a Schur complement on the rigid 6 x 6 block
 // (BlockFactor). On a random state of a 60-mode beam with a rigid body

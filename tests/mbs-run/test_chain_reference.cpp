@@ -1,4 +1,4 @@
-// Issue 17: a planar chain of N uniform rods on revolute joints, released at
+// a planar chain of N uniform rods on revolute joints, released at
 // rest from the horizontal, against the independent minimal-coordinate model
 // of chain_reference.h (the N-link pendulum in absolute link angles),
 // integrated by RK4 at a fixed step. N = 10 runs the block Schur solve with a

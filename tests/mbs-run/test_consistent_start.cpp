@@ -1,5 +1,5 @@
 // The consistent start (mbs-run/constrained/consistent_start.h, System::assemble) on
-// scenes whose initial positions do not satisfy their joints (issue 16):
+// scenes whose initial positions do not satisfy their joints:
 // - a flexible beam placed 1 mm or 0.5 m away from the revolute that holds
 //   it is assembled by its frame: its modal coordinates and rates stay as
 //   given (a projection in M's metric spreads the gap into the light modal

@@ -1,4 +1,4 @@
-// Contact monitor (issue 13): the distance kernels against hand-computed
+// Contact monitor: the distance kernels against hand-computed
 // configurations (skew, parallel and disjoint segments, every Voronoi region
 // of a triangle, a segment through a triangle), and the monitor in runs: a
 // rod crossing another rod and a plate at constant velocity (distance

@@ -1,4 +1,4 @@
-// Stability at the extremes (issue 7), each against a reference that does not
+// Stability at the extremes, each against a reference that does not
 // depend on the engine: first integrals, a minimal-coordinate solution
 // integrated here by RK4, or a tight-tolerance closed-form-backed run:
 // - a free-floating body with 200 modes conserves energy and momenta;

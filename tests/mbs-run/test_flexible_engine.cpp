@@ -1,4 +1,4 @@
-// Flexible bodies inside the engine (issue 6), on body files written here from
+// Flexible bodies inside the engine, on body files written here from
 // random lumped-mass bodies with mass-orthonormal modes (the flexible-body
 // tests' generator, tests/mbs-run/flexible/random_body.h):
 // - `modes: 0` gives exactly the rigid body of the same inertia (same

@@ -1,5 +1,5 @@
 // A published flexible-multibody benchmark whose results are printed as
-// numbers (issue 6): Simeon's flexible slider crank, problem "Slider crank"
+// numbers: Simeon's flexible slider crank, problem "Slider crank"
 // (CRANK) of the Test Set for IVP Solvers, reproduced by mbs-run against the
 // test set's reference solution at t = 0.1 s.
 //

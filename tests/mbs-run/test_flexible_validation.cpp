@@ -1,4 +1,4 @@
-// Validation of flexible bodies in mbs-run (issue 6, "Done when"), on a
+// Validation of flexible bodies in mbs-run ("Done when"), on a
 // uniform cantilever written by tests/mbs-run/beam_body.h (Hermite beam
 // elements, lumped masses, clamped-root modes):
 // - a damped cantilever under gravity settles at beam theory's q L^4 / (8 EI),
@@ -207,7 +207,7 @@ TEST(FlexibleValidation, StiffPendulumConvergesToTheRigidOne) {
   // implicit, switch_trial.h) and hands over since it is cheaper and agrees.
   // The stiff beam must switch, take a fraction of dopri5's steps at the
   // same tolerance, and stay as close to the rigid pendulum; the rigid body
-  // must not switch (issue 17: the candidate was TR-BDF2 before, 166 steps
+  // must not switch (the candidate was TR-BDF2 before, 166 steps
   // and ~1e-5 rad; IMEX 334 steps and 1.2e-7 rad, measured).
   const Run d6 = run(1e4, 2, "dopri5", 1e-6, 1e-9, 0.25), a6 = run(1e4, 2, "auto", 1e-6, 1e-9, 0.25),
             a0 = run(1.0, 0, "auto", 1e-6, 1e-9, 0.25);
@@ -616,7 +616,7 @@ simulation: {t_end: %.17g, output_step: %.17g, rtol: 1.0e-10}
   std::filesystem::remove(file);
 }
 
-// Modal energy per mode (issue 16): on the clamped beam without gravity or
+// Modal energy per mode: on the clamped beam without gravity or
 // damping the modes are decoupled oscillators, so a mode started alone keeps
 // E_j = 1/2 omega_j^2 q0^2 + 1/2 v0^2 and the others stay at zero; with the
 // frame held, the body's kinetic energy is 1/2 |qdot|^2 (M-orthonormal modes),

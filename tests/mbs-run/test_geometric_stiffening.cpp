@@ -1,4 +1,4 @@
-// Geometric stiffening in mbs-run (issue 15), end to end: fe-prep writes the
+// Geometric stiffening in mbs-run, end to end: fe-prep writes the
 // body (geometric_stiffness: true), mbs-run spins it (geometric_stiffening:
 // true), and the results are compared with references that share no code with
 // either tool:
@@ -584,7 +584,7 @@ body:
     // dies out at constant rate), not divergent as linear modes without
     // stiffening are (past 10 m at 7.1 s, docs/mbs-run.md).
     EXPECT_LT(run.tip_max, 0.1 * 10.0);
-    // "Within a few percent" of the exact beam (issue 15): the modal model is
+    // "Within a few percent" of the exact beam: the modal model is
     // linear in the deflection (the exact one is not: (tip/L)^2 ~ 7e-3 of
     // second-order terms, most of which the stiffening carries), has 4 in-plane
     // modes and fe-prep's lumped masses (~1e-3); measured 0.16 % and 0.25 % of the

@@ -1,4 +1,4 @@
-// Issue 17: the integrators must never report `completed` with a wrong answer.
+// the integrators must never report `completed` with a wrong answer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,7 +113,7 @@ PendulumRun runPendulum(const std::string& file, const BeamModel& bm, int modes,
   return p;
 }
 
-// Issue 17, case 1: a 16-mode beam pendulum (40 Hermite elements, EI 20,
+// Case 1: a 16-mode beam pendulum (40 Hermite elements, EI 20,
 // pinned-root modes: omega 69 .. 1.1e4 rad/s, undamped) swinging from the
 // horizontal. Every integrator at rtol 1e-4 and 1e-6 must either be right or
 // not say "completed". Before the fix TR-BDF2 ended "completed" with the tip
@@ -142,7 +142,7 @@ TEST(IntegratorCorrectness, SixteenModePendulumRightOrFlagged) {
     }
 }
 
-// Issue 17, cases 1 and 2 with clamped-root modes, as fe-prep writes them for
+// Cases 1 and 2 with clamped-root modes, as fe-prep writes them for
 // a body whose root is clamped: on a hinge the frame rotation and the modes
 // then span a stiff motion (1.3e4-1.8e4 rad/s, the largest eigenvalue of the
 // Jacobian, above the 16th mode's 9.6e3). TR-BDF2 blew up there (tip 7e8 m
@@ -237,7 +237,7 @@ TEST(IntegratorCorrectness, JacobianMatchesCentralDifferences) {
               worst);
 }
 
-// Issue 17, case 3: a 100-element beam whose section has no bending rotary
+// Case 3: a 100-element beam whose section has no bending rotary
 // inertia (rotations condensed out, one mode per translation) with 64 modes
 // (omega_max ~ 1e6 rad/s) failed at t ~ 1e-14 s with every integrator. It
 // must run: imex through the stiff modes, dopri5 at its stability-bound step,

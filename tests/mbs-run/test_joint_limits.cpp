@@ -1,4 +1,4 @@
-// Stops on revolute joints (issue 13), against closed forms:
+// Stops on revolute joints, against closed forms:
 // - the impulse kernel: the velocity jump of a constrained system keeps the
 //   other constraints, reverses the stop's rate by e and loses (1 - e^2) of
 //   the approach energy of the relative motion, also with redundant rows;

@@ -1,4 +1,4 @@
-// Issue 17: the joint-coordinate path (mbs-run/tree/kinematic_tree.h, Featherstone's
+// the joint-coordinate path (mbs-run/tree/kinematic_tree.h, Featherstone's
 // ABA; run/tree_dynamics.h) against references nobody here wrote:
 //  - the planar N-link chain in absolute angles (chain_reference.h, d'Alembert
 //    on the link centres, dense mass matrix): the accelerations to rounding;

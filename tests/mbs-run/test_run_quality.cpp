@@ -1,7 +1,7 @@
 // The run-quality check's energy allowance (mbs-run/run/run_quality.h) on runs
 // whose answer is right but whose energy terms are still small against the
-// energy's sensitivity to the state: a long rod chain just released (issue 17:
-// N = 1 000 at rtol 1e-9 was flagged "inaccurate" with 1.3e-8 J against an
+// energy's sensitivity to the state: a long rod chain just released
+// (N = 1 000 at rtol 1e-9 was flagged "inaccurate" with 1.3e-8 J against an
 // allowance of 1.0e-8 J while its free end agreed with the joint-coordinate
 // solution to 2e-9 m). The wrong-answer cases the check must keep catching
 // are in test_integrator_correctness.cpp (SixteenModePendulumRightOrFlagged).

@@ -1,5 +1,5 @@
 // The mbs-run executable under what a batch system and a tester do to it
-// (issue 11): every termination signal leaves a valid results file holding
+//: every termination signal leaves a valid results file holding
 // the run up to the stop with a status saying why; a write error (full disk)
 // leaves the previous file and no temporary; an output path equal to an input
 // is refused before computing; memory stays bounded whatever the output step;

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Regression tests of issue 11 (hardening) on the built executables: every bad
+# Regression tests  (hardening) on the built executables: every bad
 # input, signal and write failure ends in one clean error (or a correct result),
 # never a crash, a hang, a shell command run, a partial or damaged output.
 #   tool_robustness.sh BUILD_DIR DATA_DIR

@@ -1,4 +1,4 @@
-// Acceptance test of issue 3: on VABS's own inputs, section-prep reproduces the
+// Acceptance test of on VABS's own inputs, section-prep reproduces the
 // matrices and centres VABS wrote to the .K files (VABS 4.x, tests/data/vabs/).
 // Same mesh, same element types, same theory: the only differences left are
 // rounding and VABS's 11-digit printout, so 1e-6 relative to the diagonal is

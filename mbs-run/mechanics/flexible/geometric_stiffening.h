@@ -1,5 +1,5 @@
 #pragma once
-// Geometric stiffening of a reduced flexible body (issue 15; theory and limits in
+// Geometric stiffening of a reduced flexible body (theory and limits in
 // docs/mbs-run.md, "Geometric stiffening"; the file's data in docs/body-file.md,
 // "Geometric stiffness"). With `geometric_stiffening: true` the modal rows get
 //   - K_G(p) w,   K_G(p) = sum_c p_c K_c,

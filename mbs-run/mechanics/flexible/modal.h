@@ -23,7 +23,7 @@ Eigen::VectorXd elasticForces(const ModalProperties& p, const Eigen::VectorXd& w
                               const Eigen::VectorXd& wdot);
 // U = 1/2 w^T Lambda w.
 double strainEnergy(const ModalProperties& p, const Eigen::VectorXd& w);
-// Energy of each mode, E_j = 1/2 Lambda_jj w_j^2 + 1/2 wdot_j^2 (issue 16): the
+// Energy of each mode, E_j = 1/2 Lambda_jj w_j^2 + 1/2 wdot_j^2: the
 // modal oscillator's strain and kinetic energy (M-orthonormal modes), so
 // sum_j of the strain parts is strainEnergy, and a freely vibrating decoupled
 // mode keeps its E_j. It measures which modes a run excites.

@@ -1,6 +1,6 @@
 #pragma once
 // The node form of the second-order inertia terms of a reduced flexible body
-// (issue 17: cost linear in the modes kept). The invariants of
+// (cost linear in the modes kept). The invariants of
 // common/flexbody.h carry the terms quadratic in w as nine nm x nm matrices
 // S_ab = sum_k m_k Phi_k,a^T Phi_k,b: per evaluation that is O(nm^2) work and
 // 6 nm^2 doubles read (2.9 MB for all nine at 200 modes: out of cache). The same

@@ -1,5 +1,5 @@
-// Geometric (membrane-stress) stiffness of the shell triangle (issue 15,
-// shell_geometric_stiffness.h) against references nobody here wrote: exact
+// Geometric (membrane-stress) stiffness of the shell triangle
+// (shell_geometric_stiffness.h) against references nobody here wrote: exact
 // second-order membrane energies of polynomial fields (patch tests), the
 // buckling load of a simply supported isotropic square plate under uniaxial
 // compression, N_cr = 4 pi^2 D / b^2 (Timoshenko & Gere, Theory of Elastic

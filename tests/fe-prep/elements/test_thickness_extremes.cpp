@@ -1,4 +1,4 @@
-// Stability at the extremes (issue 7): the SAR panel (2.0 x 1.3 m, isotropic
+// Stability at the extremes: the SAR panel (2.0 x 1.3 m, isotropic
 // CFRP replacement material) from 0.02 mm to 20 mm thick, simply supported,
 // against the Navier solutions of Kirchhoff and Mindlin plate theory
 // (Reddy 2004, chs. 5 and 6). Shear locking would show as a thin-plate

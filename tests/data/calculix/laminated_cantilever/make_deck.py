@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CalculiX deck of the laminated cantilever panel for ply stresses (issue 14).
+"""CalculiX deck of the laminated cantilever panel for ply stresses.
 
 A 1 x 0.2 m cross-ply [0/90/90/0] IM6/epoxy panel (plies 0.5 mm; E1 177 GPa,
 E2 = E3 10.8 GPa, G12 = G13 7.6 GPa, G23 3.6 GPa, nu12 = nu13 0.27, nu23 0.5),
@@ -44,7 +44,7 @@ def deck(nx, ny):
                 continue
             idx[(i, j)] = len(nodes) + 1
             nodes.append((i * dx / 2, -B / 2 + j * dy / 2))
-    out = ["*HEADING", "laminated cantilever panel, ply stresses (flexcomp issue 14)", "*NODE"]
+    out = ["*HEADING", "laminated cantilever panel, ply stresses (flexcomp)", "*NODE"]
     out += ["%d, %.10g, %.10g, 0" % (k + 1, x, y) for k, (x, y) in enumerate(nodes)]
     out.append("*ELEMENT, TYPE=S8R, ELSET=EALL")
     e = 0

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the CalculiX decks of the raised-pins panel side-by-side (issue 16).
+"""Writes the CalculiX decks of the raised-pins panel side-by-side.
 
 A 1 x 0.65 m, 2 mm isotropic CFRP panel (E 159 GPa, nu 0.38, rho 1610) held by
 two hinge points 70 mm above its mid-surface at x = -0.5, y = -/+0.2, each
