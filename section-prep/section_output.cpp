@@ -43,6 +43,10 @@ std::vector<double> gather(std::size_t n0, std::size_t n1, std::size_t n2, Get g
   return v;
 }
 
+// The in-plane components of the Voigt order [11, 22, 33, 23, 13, 12] a ply's
+// stress is written with: fibre, transverse, in-plane shear.
+constexpr int kPlyComponents[3] = {0, 1, 5};
+
 void writeRecoveryBasis(H5File& f, const SectionProperties& p, const SectionMesh& mesh) {
   const std::size_t ne = p.recovery.size();
   // Per unit resultant r, each element's stresses in its material axes.
@@ -52,11 +56,10 @@ void writeRecoveryBasis(H5File& f, const SectionProperties& p, const SectionMesh
       mat_stress[e][r] = voigtToAxes(p.recovery[e].stress.col(r), p.recovery[e].axes, false);
       mat_strain[e][r] = voigtToAxes(p.recovery[e].strain.col(r), p.recovery[e].axes, true);
     }
-  static const int ply[3] = {0, 1, 5};
   f.writeArray3("/recovery/stress", gather(6, ne, 6, [&](auto r, auto e, auto c) { return p.recovery[e].stress(c, r); }), 6, ne, 6);
   f.writeArray3("/recovery/strain", gather(6, ne, 6, [&](auto r, auto e, auto c) { return p.recovery[e].strain(c, r); }), 6, ne, 6);
-  f.writeArray3("/recovery/ply_stress", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_stress[e][r](ply[c]); }), 6, ne, 3);
-  f.writeArray3("/recovery/ply_strain", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_strain[e][r](ply[c]); }), 6, ne, 3);
+  f.writeArray3("/recovery/ply_stress", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_stress[e][r](kPlyComponents[c]); }), 6, ne, 3);
+  f.writeArray3("/recovery/ply_strain", gather(6, ne, 3, [&](auto r, auto e, auto c) { return mat_strain[e][r](kPlyComponents[c]); }), 6, ne, 3);
   f.writeArray3("/recovery/material_axes", gather(ne, 3, 3, [&](auto e, auto i, auto j) { return p.recovery[e].axes(j, i); }), ne, 3, 3);
   f.setAttribute("/recovery/stress", "resultants", std::string("F1, F2, F3, M1, M2, M3"));
   Eigen::MatrixXd c(ne, 2);

@@ -166,7 +166,9 @@ TEST(JointLimits, PendulumBouncesWithRestitutionThenRests) {
     const double expect = 0.5 * rodInertia() * std::pow(e * imp[i][1], 2) / (kG * 0.5);
     // The output grid (10 ms) samples the apex within 1/2 a (5 ms)^2 of the angle.
     EXPECT_NEAR(rise, expect, 0.5 * k * 0.5 * 25e-6 + 1e-9) << i;
-    if (i > 0) EXPECT_NEAR(rise / prev_rise, e * e, 0.02) << i;
+    if (i > 0) {
+      EXPECT_NEAR(rise / prev_rise, e * e, 0.02) << i;
+    }
     prev_rise = rise;
   }
   // Rest: once the remaining bounces, 2 e w / ((1 - e) a) with a = k cos(bs)
@@ -591,7 +593,9 @@ simulation: {t_end: 0.6, output_step: 0.005, rtol: 1.0e-9}
                 "balance %.2e J\n", e, r.limit_impacts[0].size(), umax, E0, dE);
     EXPECT_GT(umax, 1e-3 * E0);  // the impulse excites the modes
     EXPECT_LT(dE, 1e-6 * E0);
-    if (e == 1.0) EXPECT_LT(r.dissipated.back(), 1e-10 * E0);
+    if (e == 1.0) {
+      EXPECT_LT(r.dissipated.back(), 1e-10 * E0);
+    }
     else EXPECT_GT(r.dissipated.back(), 0.5 * (1 - e * e) * 4.0 * I_eff * 0.99);
     if (e == 0.5)
       std::printf("[   info   ] the stop meets %.4g of the beam's %.4g kg m^2 (the rest is carried by the modes)\n",

@@ -77,7 +77,9 @@ TEST(DenseKernels, Dsyrk) {
         for (int j = 0; j < n; ++j)
           for (int i = 0; i < n; ++i) {
             const bool in = uplo == 'L' ? i >= j : i <= j;
-            if (in) EXPECT_NEAR(got(i, j), full(i, j), 1e-13) << uplo << t << beta;
+            if (in) {
+              EXPECT_NEAR(got(i, j), full(i, j), 1e-13) << uplo << t << beta;
+            }
             else EXPECT_EQ(got(i, j), C0(i, j)) << "the other triangle is untouched";
           }
         EXPECT_TRUE(c.paddingIntact());
