@@ -98,7 +98,7 @@ TEST(FreeStaticCorrection, FreeRodUnderAStepForceSettlesAtTheInertiaReliefDeflec
     const double s = settled.tip.back() / (c * std::cos(settled.angle));
     double p = 0;
     for (double w : peak.tip) p = std::max(p, w);
-    std::printf("[   info   ] %-22s %2ld shapes: settled %.6e m (%+.2e, turned %.2e rad), undamped peak %.6e m (%+.2e)\n",
+    std::printf("[   info   ] %-22s %2d shapes: settled %.6e m (%+.2e, turned %.2e rad), undamped peak %.6e m (%+.2e)\n",
                 b.label, br.body.modeCount(), settled.tip.back(), s - 1, settled.angle, p, p / ref_peak - 1);
     settled_error.push_back(s - 1);
     peak_error.push_back(p / ref_peak - 1);

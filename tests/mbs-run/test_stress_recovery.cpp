@@ -470,7 +470,7 @@ TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) 
     const Eigen::VectorXd ts = f3.readVector("/stress_time");
     ASSERT_EQ(ts.size(), static_cast<long>(kept.size()));
     for (std::size_t j = 0; j < kept.size(); ++j) EXPECT_EQ(ts(j), t(kept[j])) << j;
-    for (const std::string& d : {"/bodies/p/ply_stress", "/bodies/p/failure_index", "/bodies/w/ply_stress",
+    for (const char* d : {"/bodies/p/ply_stress", "/bodies/p/failure_index", "/bodies/w/ply_stress",
                                  "/bodies/b/section_forces"}) {
       std::vector<hsize_t> s1 = f1.shape(d), s3 = f3.shape(d);
       ASSERT_EQ(s1[0], static_cast<hsize_t>(n)) << d;
@@ -483,7 +483,7 @@ TEST(StressEnvelope, StressEveryWritesEveryKthRowAndTheLastWithTheSameEnvelope) 
       for (std::size_t j = 0; j < kept.size(); ++j)
         for (std::size_t i = 0; i < w; ++i) ASSERT_EQ(b[j * w + i], a[kept[j] * w + i]) << d << " row " << kept[j];
     }
-    for (const std::string& d : {"/time", "/bodies/p/modal_coordinates", "/bodies/p/failure_index_peak",
+    for (const char* d : {"/time", "/bodies/p/modal_coordinates", "/bodies/p/failure_index_peak",
                                  "/bodies/p/failure_index_peak_time", "/bodies/p/ply_stress_at_peak",
                                  "/bodies/w/ply_stress_max", "/bodies/w/ply_stress_min", "/bodies/b/section_forces_max",
                                  "/bodies/b/section_forces_min"})
