@@ -73,7 +73,7 @@ BENCHMARK(BM_Box)->Arg(400)->Arg(200)->Arg(100)->Arg(50)->Arg(35)
 SectionMesh gridMesh(int nx, int ny, bool quadratic) {
   SectionMesh m;
   const fc::Material ud = fc::makeOrthotropic("ud", 140e9, 9e9, 9e9, 5e9, 5e9, 3e9, 0.3, 0.3, 0.5, 1550);
-  m.materials.push_back({"ud", ud.C, ud.rho});
+  m.materials.push_back({"ud", ud.C, ud.rho, std::nullopt});
   const int px = quadratic ? 2 * nx + 1 : nx + 1, py = quadratic ? 2 * ny + 1 : ny + 1;
   for (int j = 0; j < py; ++j)
     for (int i = 0; i < px; ++i)

@@ -9,7 +9,7 @@ namespace fc::section::testing {
 
 inline SectionMaterial isotropic(double E, double nu, double rho = 1000.0) {
   const Material m = makeIsotropic("iso", E, nu, rho);
-  return {m.name, m.C, m.rho};
+  return {m.name, m.C, m.rho, std::nullopt};
 }
 
 inline SectionSpec solidCircle(double diameter, const SectionMaterial& m, double h) {

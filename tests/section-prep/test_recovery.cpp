@@ -36,12 +36,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Vector6d unit(int k) {
-  Vector6d F = Vector6d::Zero();
-  F(k) = 1;
-  return F;
-}
-
 struct Iso {
   SectionMesh mesh;
   SectionProperties p;
