@@ -14,7 +14,7 @@ rm -rf "$scratch"
 fail=0
 check() { if eval "$1"; then echo "ok    $2"; else echo "FAIL  $2"; fail=1; fi; }
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$scratch/CMakeCache.txt"; }
-configure() { BUILD_DIR="$scratch" FLEXCOMP_CONFIGURE_ONLY=1 bash "$src/$1" >"$scratch.log" 2>&1 || { cat "$scratch.log"; exit 1; }; }
+configure() { mkdir -p "$(dirname "$scratch")"; BUILD_DIR="$scratch" FLEXCOMP_CONFIGURE_ONLY=1 bash "$src/$1" >"$scratch.log" 2>&1 || { cat "$scratch.log"; exit 1; }; }
 # The flags that decide how the tools are compiled: the two commands must agree.
 flags() { echo "$(cache CMAKE_BUILD_TYPE) $(cache FLEXCOMP_WERROR) $(cache CMAKE_CXX_FLAGS)"; }
 
