@@ -13,22 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fe-prep/gmsh_session.h"
+
 namespace fc::feprep {
 namespace {
-
-// gmsh keeps global state: one session per meshing call, always finalized,
-// so that a failure in one run never leaks a model into the next.
-class GmshSession {
- public:
-  explicit GmshSession(bool quiet) {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", quiet ? 0 : 1);
-    gmsh::option::setNumber("General.Verbosity", quiet ? 0 : 2);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 // Reads the current gmsh model's triangles (linear, type 2) and their nodes.
 Mesh extractTriangles() {

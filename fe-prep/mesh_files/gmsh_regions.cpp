@@ -12,21 +12,10 @@
 #include "common/input.h"
 #include "common/termination.h"
 
+#include "fe-prep/gmsh_session.h"
+
 namespace fc::feprep {
 namespace {
-
-// gmsh keeps global state: one session per read, always finalized.
-class GmshSession {
- public:
-  explicit GmshSession(bool quiet) {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", quiet ? 0 : 1);
-    gmsh::option::setNumber("General.Verbosity", quiet ? 0 : 2);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 bool endsWith(const std::string& s, const std::string& e) {
   return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
