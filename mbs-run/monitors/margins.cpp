@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mbs-run/constrained/system.h"
@@ -40,11 +41,15 @@ Eigen::Vector3d pointOn(const Joint& jt, int b) { return jt.body_i == b ? jt.poi
 void Margins::observe(const Model& m, const Sample& s) {
   if (joints.size() != m.joints.size()) joints.assign(m.joints.size(), JointPeak());
   if (beams.size() != m.margin_beams.size()) beams.assign(m.margin_beams.size(), Beam());
+  const bool first_row = rows_++ == 0;
   for (std::size_t j = 0; j < m.joints.size() && j < s.joints.size(); ++j) {
+    JointPeak& p = joints[j];
     const double f = s.joints[j].reaction_force.norm(), t = s.joints[j].reaction_torque.norm();
-    if (f > joints[j].force) joints[j].force = f, joints[j].force_time = s.time;
-    if (m.joints[j].type != JointType::Spherical && t > joints[j].moment)
-      joints[j].moment = t, joints[j].moment_time = s.time;
+    if (f > p.force) p.force = f, p.force_time = s.time;
+    if (m.joints[j].type != JointType::Spherical && t > p.moment) p.moment = t, p.moment_time = s.time;
+    const double a = s.joints[j].angle;
+    if (first_row || a < p.angle_min) p.angle_min = a, p.angle_min_time = s.time;
+    if (first_row || a > p.angle_max) p.angle_max = a, p.angle_max_time = s.time;
   }
   for (std::size_t k = 0; k < m.margin_beams.size(); ++k) {
     const BeamMarginSpec& spec = m.margin_beams[k];
@@ -72,6 +77,21 @@ double Margins::largestBucklingRatio(const Model& m, int* beam) const {
     }
   }
   return worst;
+}
+
+double Margins::overshoot(const Model& m, int joint) const {
+  const auto j = static_cast<std::size_t>(joint);
+  if (j >= joints.size() || m.joints[j].type != JointType::Revolute) return -1.0;
+  const JointPeak& p = joints[j];
+  const JointLimits& lim = m.joints[j].limits;
+  double past = -1.0;
+  if (lim.has_max) past = std::max(past, std::max(0.0, p.angle_max - lim.max));
+  if (lim.has_min) past = std::max(past, std::max(0.0, lim.min - p.angle_min));
+  // A latch holds the angle it crossed: past it in the direction of arrival.
+  for (const Latch& l : latches)
+    if (l.joint == joint)
+      past = std::max(past, std::max(0.0, l.rate >= 0.0 ? p.angle_max - l.angle : l.angle - p.angle_min));
+  return past;
 }
 
 Margins::Latch latchArrival(System& sys, const Model& m, int joint, double angle, double t, const Eigen::VectorXd& y) {

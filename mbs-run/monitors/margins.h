@@ -43,6 +43,8 @@ struct Margins {
   struct JointPeak {
     double force = 0.0, force_time = 0.0;    // |reaction force| [N]
     double moment = 0.0, moment_time = 0.0;  // |reaction moment| [N m] (revolute joints)
+    // Revolute joints: the range of the angle over the output rows [rad].
+    double angle_min = 0.0, angle_min_time = 0.0, angle_max = 0.0, angle_max_time = 0.0;
   };
   struct Latch {
     int joint = -1;
@@ -55,6 +57,13 @@ struct Margins {
   void observe(const Model& m, const Sample& s);
   // Largest compression / Euler load over the named beams (0 without beams), and which (-1 without).
   double largestBucklingRatio(const Model& m, int* beam = nullptr) const;
+  // How far a revolute joint's angle went past its stops (limits: min, max)
+  // and past the crossing angle of each latch on it, in the direction it
+  // arrived [rad]; 0 when it never did, -1 for a joint with neither.
+  double overshoot(const Model& m, int joint) const;
+
+ private:
+  long rows_ = 0;  // output rows observed
 };
 
 // The arrival of a latch at the crossing angle: the joint's angle rate in

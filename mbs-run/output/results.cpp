@@ -338,7 +338,29 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
       f.setAttribute(p + "/reaction_torque", "peak", mg.joints[j].moment);
       f.setAttribute(p + "/reaction_torque", "peak_time", mg.joints[j].moment_time);
     }
+    if (model.joints[j].type == JointType::Revolute && r.samples > 0) {
+      f.setAttribute(p + "/angle", "min", mg.joints[j].angle_min);
+      f.setAttribute(p + "/angle", "min_time", mg.joints[j].angle_min_time);
+      f.setAttribute(p + "/angle", "max", mg.joints[j].angle_max);
+      f.setAttribute(p + "/angle", "max_time", mg.joints[j].angle_max_time);
+      const double past = mg.overshoot(model, static_cast<int>(j));
+      if (past >= 0.0) f.setAttribute(p + "/angle", "overshoot", past);
+    }
   }
+  {
+    // The largest overshoot past a stop or latch over the joints that have one.
+    int worst = -1;
+    double largest = -1.0;
+    for (std::size_t j = 0; j < model.joints.size() && r.samples > 0; ++j) {
+      const double past = mg.overshoot(model, static_cast<int>(j));
+      if (past > largest) largest = past, worst = static_cast<int>(j);
+    }
+    if (worst >= 0) {
+      f.setAttribute("/", "overshoot_max", largest);
+      f.setAttribute("/", "overshoot_max_joint", model.joints[static_cast<std::size_t>(worst)].name);
+    }
+  }
+  if (r.samples > 0) f.setAttribute("/", "energy_dissipated", r.energy_dissipated);
   for (std::size_t k = 0; k < model.margin_beams.size() && k < mg.beams.size(); ++k) {
     const BeamMarginSpec& b = model.margin_beams[k];
     const std::string p = "/margins/beams/" + model.bodies[static_cast<std::size_t>(b.body)].name;

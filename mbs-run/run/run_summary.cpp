@@ -69,6 +69,7 @@ void RunSummary::observe(const Model& m, const Sample& s) {
   for (std::size_t k = 0; k < s.distances.size(); ++k)
     if (s.distances[k] < smallest_distance[k].value) smallest_distance[k] = {s.distances[k], s.time, ""};
   margins.observe(m, s);
+  energy_dissipated = s.energy.dissipated;
   energy_scale = std::max({energy_scale, std::abs(s.energy.kinetic), std::abs(s.energy.potential), s.energy.dissipated});
   energy_sensitivity.absolute = std::max(energy_sensitivity.absolute, s.energy_sensitivity.absolute);
   energy_sensitivity.relative = std::max(energy_sensitivity.relative, s.energy_sensitivity.relative);

@@ -29,6 +29,7 @@ struct RunSummary {
   double max_violation = 0.0;        // over the output samples
   double energy_balance_error = 0.0; // max |T + V + D - W - E_ref| per event-free segment
   double energy_scale = 0.0;         // max of |T|, |V|, D over the run, to make it relative
+  double energy_dissipated = 0.0;    // D at the last output row [J]: damping, friction, impacts
   EnergySensitivity energy_sensitivity;  // max of each over the run (System::energySensitivity)
   double length_scale = 1.0;         // max(1 m, largest body position over the samples)
   int max_al_iterations = 0;

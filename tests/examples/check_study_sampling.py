@@ -172,6 +172,21 @@ for latch in ("lock", "stop"):
         # After the lock the rod hangs still: m g; the peak is the swing's, reached in the last row
         # before the latch (2.5 m g at the bottom itself).
         check(abs(mt["peak_reaction_force:hinge"] / closed - 1) < 1e-6, "lock: the peak reaction is the swing's")
+    # mbs-run's own summary carries the same metrics as root and joint attributes, folded over
+    # the same output rows: equal to the study's to rounding (the attributes are the run's
+    # doubles, the study's the datasets' copies of them).
+    with h5py.File(res) as f:
+        own = {"energy_dissipated": float(f.attrs["energy_dissipated"]),
+               "overshoot:hinge": float(f["joints/hinge/angle"].attrs["overshoot"]),
+               "max_angle:hinge": float(f["joints/hinge/angle"].attrs["max"]),
+               "min_angle:hinge": float(f["joints/hinge/angle"].attrs["min"]),
+               "peak_reaction_force:hinge": float(f["joints/hinge/reaction_force"].attrs["peak"])}
+        own_max = (float(f.attrs["overshoot_max"]), str(fs.text(f.attrs["overshoot_max_joint"])))
+    theirs = fs.compute_metrics(res, s, list(own))
+    for key, v in own.items():
+        check(abs(v - theirs[key]) <= 1e-14 * max(1.0, abs(v)),
+              f"{latch}: mbs-run's {key} {v!r}, the study's {theirs[key]!r}")
+    check(own_max == (own["overshoot:hinge"], "hinge"), f"{latch}: overshoot_max {own_max}")
 
 # ---- distances and failure index from a synthetic results file
 syn = os.path.join(work, "synthetic.h5")
