@@ -89,10 +89,12 @@ with h5py.File(res, "r") as f:
     legs = {b: (f[f"margins/beams/{b}/axial_compression"][()], float(f[f"margins/beams/{b}/axial_compression"].attrs["euler_load"]))
             for b in ("B11", "B12")}
 check(status == "completed", f"status {status}")
-# 2e-5 of the largest energy: the v3 run lasts 30 s (v2's 20 s) through two latches and the
-# snubber's impacts, and measured 1.07e-5 on v3 (v2: below 1e-5); mbs-run's own balance
-# check (run_quality.h: steps x tolerance) passed it, so the status above is completed.
-check(balance < 2e-5 * largest, f"energy balance error {balance:.2e} J of {largest:.3g} J")
+# The balance error of a one-step method's run grows about linearly with the simulated time it
+# integrates (phase 2's slow drive: 7.4e-5 J of drift over its 15 s, measured): the bound is
+# v2's 1e-5 of the largest energy for its 20 s, scaled to v3's 30 s, 1.5e-5. Measured on v3:
+# 9.9e-6 (0.2 mJ of 20 J: 8.5e-5 J in the first 10 ms after the release at 10 s, the rest the
+# drift); mbs-run's own balance check (run_quality.h: steps x tolerance) is far looser.
+check(balance < 1.5e-5 * largest, f"energy balance error {balance:.2e} J of {largest:.3g} J")
 check(violation < 1e-6, f"largest constraint violation {violation:.2e}")
 
 # Accuracy against the finer model (phase 1, before the toggle). The reference was computed without the
