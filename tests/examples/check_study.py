@@ -12,13 +12,23 @@ example_flexible_beam) and checks what it wrote:
   the settings chosen meet it when run again, their predicted error is the
   measured one of the one-factor run they coincide with (or within the
   first-order model's sum of effects), no cheaper measured run meets it, and
-  target/scene.yaml runs as it is.
+  target/scene.yaml runs as it is;
+- the same study run again reuses every run (results files untouched: each
+  carries the SHA-256 of its inputs beside it);
+- a Craig-Bampton body (the hinged panel reduced with its hinge pinned): its
+  `modes:BODY` values are fixed-interface modes of a rebuilt body (the scene
+  keeps `modes: all`, the body file holds that many kept modes), `size:BODY`
+  its element size with the YAML's other mesh keys kept, and the finer size
+  comes closer to the reference.
 """
 import csv
 import json
 import os
 import subprocess
 import sys
+
+import h5py
+import yaml
 
 from example_checks import check, finish
 
@@ -65,4 +75,50 @@ check(meeting and last["predicted_cost"] <= 3 * min(meeting), f"the choice is am
 p = subprocess.run([os.path.join(build, "mbs-run", "mbs-run"), os.path.join(out, "target", "scene.yaml"), "-o",
                     os.path.join(out, "target", "run.h5"), "-q", "--t-end", "0.1"], capture_output=True, text=True)
 check(p.returncode == 0, "target/scene.yaml runs as written" + ("" if p.returncode == 0 else p.stderr[-400:]))
+
+# ---- the same study again: every run and body reused
+stamps = {f: os.path.getmtime(os.path.join(out, "results", f)) for f in os.listdir(os.path.join(out, "results"))
+          if f.endswith(".h5")}
+subprocess.run(cmd, cwd=work, check=True, capture_output=True)
+again = {f: os.path.getmtime(os.path.join(out, "results", f)) for f in stamps}
+check(again == stamps, f"a repeated study reuses its runs ({sum(again[f] != stamps[f] for f in stamps)} rerun)")
+
+# ---- a Craig-Bampton body: fixed-interface modes and element size as factors
+repo = os.path.dirname(os.path.dirname(os.path.abspath(study)))
+cbw = os.path.join(work, "cb")
+os.makedirs(cbw, exist_ok=True)
+with open(os.path.join(repo, "examples", "hinged-panel", "panel.yaml")) as f:
+    spec = yaml.safe_load(f)
+spec["body"]["shell"]["mesh"] = {"size": 0.2, "graded_from": 0.3}
+spec["body"].update(reduction="craig_bampton", modes=2)
+with open(os.path.join(cbw, "panel.yaml"), "w") as f:
+    yaml.safe_dump(spec, f)
+subprocess.run([os.path.join(build, "fe-prep", "fe-prep"), "panel.yaml", "-o", "panel.h5", "-q"], cwd=cbw, check=True)
+with open(os.path.join(repo, "examples", "hinged-panel", "scene.yaml")) as f:
+    scene = yaml.safe_load(f)
+scene["bodies"][1]["flexible"].update(file="panel.h5", modes="all")
+with open(os.path.join(cbw, "scene.yaml"), "w") as f:
+    yaml.safe_dump(scene, f)
+cbout = os.path.join(cbw, "study")
+subprocess.run([sys.executable, study, "scene.yaml", "--out", cbout, "--tools", build, "--jobs", "2", "--t-end", "0.3",
+                "--vary", "size:panel=0.3,0.1", "--vary", "modes:panel=1,4", "--body-yaml", "panel=panel.yaml",
+                "--channel", "joints/hinge/angle"], cwd=cbw, check=True, capture_output=True)
+with open(os.path.join(cbout, "summary.csv")) as f:
+    cb_rows = {r["run"]: r for r in csv.DictReader(f)}
+check(set(cb_rows) == {"base", "size-panel=0.3", "size-panel=0.1", "modes-panel=1", "modes-panel=4",
+                       "modes-panel=4_size-panel=0.1"}, f"Craig-Bampton study runs {sorted(cb_rows)}")
+for run, kept, size in (("modes-panel=4", 4, 0.2), ("size-panel=0.1", 2, 0.1), ("modes-panel=1", 1, 0.2)):
+    with open(os.path.join(cbout, "scenes", run + ".yaml")) as f:
+        body = yaml.safe_load(f)["bodies"][1]["flexible"]
+    check(body["modes"] == "all", f"{run}: the scene keeps modes: all ({body['modes']})")
+    with h5py.File(body["file"]) as f:
+        n = f["reduction/kept_modes"].shape[0]
+    with open(body["file"][:-3] + ".yaml") as f:
+        made = yaml.safe_load(f)["body"]
+    check(n == kept and made["modes"] == kept and made["reduction"] == "craig_bampton"
+          and made["shell"]["mesh"] == {"size": size, "graded_from": 0.3},
+          f"{run}: body file with {n} fixed-interface modes from {made['modes']}, mesh {made['shell']['mesh']}")
+ang = "joints/hinge/angle max"
+e3, e1 = float(cb_rows["size-panel=0.3"][ang]), float(cb_rows["size-panel=0.1"][ang])
+check(e1 < e3, f"the finer panel comes closer to the reference: size 0.3 {e3:.2e} rad, 0.1 {e1:.2e} rad")
 finish()
