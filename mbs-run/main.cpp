@@ -166,11 +166,18 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
   for (const auto& l : mg.latches)
     std::printf("  latch %s: at t = %.10g s (angle %.6g rad), arriving at %.4g rad/s\n", m.joints[l.joint].name.c_str(),
                 l.time, l.angle, l.rate);
-  for (std::size_t j = 0; j < m.joints.size() && r.samples > 0; ++j) {
-    const double past = mg.overshoot(m, static_cast<int>(j));
-    if (past < 0.0) continue;
-    std::printf("  joint %s: angle from %.6g to %.6g rad, %.3g rad past its stops and latches\n", m.joints[j].name.c_str(),
-                mg.joints[j].angle_min, mg.joints[j].angle_max, past);
+  {
+    // One line: the joint that went furthest past a stop or latch (each
+    // joint's own figure and angle range are attributes of its angle).
+    int worst = -1;
+    double largest = -1.0;
+    for (std::size_t j = 0; j < m.joints.size() && r.samples > 0; ++j) {
+      const double past = mg.overshoot(m, static_cast<int>(j));
+      if (past > largest) largest = past, worst = static_cast<int>(j);
+    }
+    if (worst >= 0)
+      std::printf("  largest overshoot past a stop or latch %.3g rad (joint %s, angle from %.6g to %.6g rad)\n", largest,
+                  m.joints[worst].name.c_str(), mg.joints[worst].angle_min, mg.joints[worst].angle_max);
   }
   if (r.samples > 0 && r.energy_dissipated != 0.0)
     std::printf("  energy dissipated %.6g J (damping, friction, impacts)\n", r.energy_dissipated);

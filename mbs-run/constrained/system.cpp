@@ -72,31 +72,32 @@ VectorXd System::initialState() const {
 
 void System::poses(const VectorXd& y, std::vector<BodyPose>& out) const {
   out.resize(model_.bodies.size());
-  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
-    const Body& b = model_.bodies[k];
-    BodyPose& P = out[k];
-    if (b.fixed) {
-      P.r = b.position;
-      P.p = b.orientation.normalized();
-      P.rdot.setZero();
-      P.w.setZero();
-      P.free = false;
-    } else {
-      P.r = y.segment<3>(b.pos_index);
-      P.p = y.segment<4>(b.pos_index + 3).normalized();
-      P.rdot = y.segment<3>(model_.nq + b.dof_index);
-      P.w = y.segment<3>(model_.nq + b.dof_index + 3);
-      P.free = true;
-    }
-    if (b.modes > 0 && !b.fixed) {
-      P.modal = y.segment(b.pos_index + 7, b.modes);
-      P.modal_rate = y.segment(model_.nq + b.dof_index + 6, b.modes);
-    } else {
-      P.modal.resize(0);
-      P.modal_rate.resize(0);
-    }
-    P.A = fc::rotationMatrix(P.p);
+  for (std::size_t k = 0; k < model_.bodies.size(); ++k) bodyPose(static_cast<int>(k), y, out[k]);
+}
+
+void System::bodyPose(int k, const VectorXd& y, BodyPose& P) const {
+  const Body& b = model_.bodies[static_cast<std::size_t>(k)];
+  if (b.fixed) {
+    P.r = b.position;
+    P.p = b.orientation.normalized();
+    P.rdot.setZero();
+    P.w.setZero();
+    P.free = false;
+  } else {
+    P.r = y.segment<3>(b.pos_index);
+    P.p = y.segment<4>(b.pos_index + 3).normalized();
+    P.rdot = y.segment<3>(model_.nq + b.dof_index);
+    P.w = y.segment<3>(model_.nq + b.dof_index + 3);
+    P.free = true;
   }
+  if (b.modes > 0 && !b.fixed) {
+    P.modal = y.segment(b.pos_index + 7, b.modes);
+    P.modal_rate = y.segment(model_.nq + b.dof_index + 6, b.modes);
+  } else {
+    P.modal.resize(0);
+    P.modal_rate.resize(0);
+  }
+  P.A = fc::rotationMatrix(P.p);
 }
 
 void System::initializeJoints(const VectorXd& y) {
@@ -726,10 +727,13 @@ std::vector<JointReaction> System::reactions(double t, const VectorXd& y) {
 }
 
 double System::jointAngle(int j, const VectorXd& y) const {
-  std::vector<BodyPose> P;
-  poses(y, P);
+  // The joint's two bodies only: the stop and event scans call this per
+  // joint and per scan point, and all the poses would make that O(N^2).
   const Joint& jt = model_.joints[j];
-  return revoluteAngle(jt, joints_[j], P[jt.body_i], P[jt.body_j]);
+  BodyPose bi, bj;
+  bodyPose(jt.body_i, y, bi);
+  bodyPose(jt.body_j, y, bj);
+  return revoluteAngle(jt, joints_[j], bi, bj);
 }
 
 void System::updateAngleReferences(const VectorXd& y) {

@@ -64,6 +64,8 @@ class System {
   void initializeJoints(const Eigen::VectorXd& y);
 
   void poses(const Eigen::VectorXd& y, std::vector<BodyPose>& out) const;
+  // Body k's pose alone (as poses gives it).
+  void bodyPose(int k, const Eigen::VectorXd& y, BodyPose& out) const;
   // ydot = f(t, y).
   void derivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot);
   // Mass-orthogonal projection of positions then velocities; normalises the

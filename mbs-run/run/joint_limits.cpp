@@ -59,10 +59,11 @@ StopMonitor::StopMonitor(const Model& model, double angle_tol)
 }
 
 double StopMonitor::angleRate(System& sys, int j, const VectorXd& y) const {
-  std::vector<BodyPose> P;
-  sys.poses(y, P);
   const Joint& jt = model_.joints[j];
-  return revoluteRate(jt, P[jt.body_i], P[jt.body_j]);
+  BodyPose bi, bj;
+  sys.bodyPose(jt.body_i, y, bi);
+  sys.bodyPose(jt.body_j, y, bj);
+  return revoluteRate(jt, bi, bj);
 }
 
 double StopMonitor::angleAccel(System& sys, int j, double t, const VectorXd& y) const {
@@ -140,6 +141,14 @@ std::optional<StopEvent> StopMonitor::locate(System& sys, const Dense& dense, do
     }
     return std::make_pair(a, b);
   };
+  // The scan points' states, interpolated once for all joints (per joint
+  // they would cost O(N) each: O(N^2) per step on a chain of N).
+  constexpr int kScan = kScanPoints;
+  std::vector<VectorXd> scan(kScan);
+  auto scanState = [&](int k) -> const VectorXd& {
+    if (scan[k].size() == 0) scan[k] = dense(t0 + (t1 - t0) * k / kScan);
+    return scan[k];
+  };
   for (int j : joints_) {
     const JointRuntime& rt = sys.jointRuntime(j);
     if (rt.locked || !rt.enabled) continue;
@@ -174,7 +183,7 @@ std::optional<StopEvent> StopMonitor::locate(System& sys, const Dense& dense, do
         bool found = false;
         for (int k = 1; k <= n && !found; ++k) {
           const double tb = k == n ? t1 : t0 + (t1 - t0) * k / n;
-          const double pb = k == n ? pen(y1) : pen(dense(tb));
+          const double pb = k == n ? pen(y1) : pen(scanState(k));
           if (pa <= 0.0 && pb > 0.0) {
             const double t_lo = ta, t_hi = tb;
             double a = t_lo, b = t_hi;
