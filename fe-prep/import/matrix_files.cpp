@@ -156,6 +156,7 @@ void readInp(const std::string& path, NodeTable& t, std::set<std::string>& visit
                                    " nodes, got " + std::to_string(pending.size()) + " numbers");
     auto& dst = elem_solid ? t.solid_nodes : t.structural_nodes;
     dst.insert(dst.end(), pending.begin() + 1, pending.end());
+    if (elem_solid) t.solid_elements.push_back({elem_type, std::vector<long>(pending.begin() + 1, pending.end())});
     ++t.element_counts[elem_type];
     pending.clear();
   };
