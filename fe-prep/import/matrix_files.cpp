@@ -415,7 +415,9 @@ DofList readDofList(const std::string& path) {
     auto [it, fresh] = seen.emplace(std::make_pair(d.node, d.dof), line);
     if (!fresh)
       fail(path, line, "node " + std::to_string(d.node) + " DOF " + std::to_string(d.dof) + " listed again (first at line " +
-                           std::to_string(it->second) + ")");
+                           std::to_string(it->second) + "); CalculiX writes this for beam and shell elements (B31, B32, "
+                           "S3..S8), which it expands into bricks: it names every brick node by its parent node, so the "
+                           "rows have no coordinates and are not imported (docs/file-formats.md, \"Imported matrices\")");
     out.dofs.push_back(d);
   }
   if (out.dofs.empty()) fail(path, line, "no DOF lines found; expected 'node dof' per matrix row");

@@ -335,6 +335,16 @@ TEST(MatrixImportFitting, RigidPatchStaticDeflectionMatchesCalculix) {
   EXPECT_NEAR(c(1) / (3.988351e-6 / 100.0), 1.0, 1e-5);
 }
 
+// CalculiX's matrix storage of a beam (B32R, expanded by ccx into a C3D20R
+// brick) names each brick node by its parent beam node: refused with the
+// reason (tests/data/import/beam_b32_matrices.inp, the .dof ccx 2.20 wrote).
+TEST(MatrixImportReaders, CalculixExpandedBeamDofListIsRefusedWithTheReason) {
+  const std::string msg = errorOf([] { readDofList(kData + "beam_b32_matrices.dof"); });
+  EXPECT_NE(msg.find("beam_b32_matrices.dof:4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node 1 DOF 1 listed again (first at line 1)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expands into bricks"), std::string::npos) << msg;
+}
+
 // ---- distributing (RBE3) patches on imported solids
 
 // Face integrals of the shape functions on flat faces, by hand: bilinear
