@@ -345,6 +345,18 @@ TEST(MatrixImportReaders, CalculixExpandedBeamDofListIsRefusedWithTheReason) {
   EXPECT_NE(msg.find("expands into bricks"), std::string::npos) << msg;
 }
 
+// One generator (examples/imported-fitting/make_fitting.py) for the example's
+// mesh and the fixtures': the two files are its output, byte for byte.
+TEST(MatrixImportFitting, FixtureMeshIsTheExamplesMesh) {
+  auto text = [](const std::string& p) {
+    std::ifstream in(p);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string fixture = text(kData + "fitting_mesh.inp");
+  ASSERT_FALSE(fixture.empty());
+  EXPECT_EQ(fixture, text(std::string(FLEXCOMP_SOURCE_DIR) + "/examples/imported-fitting/fitting_mesh.inp"));
+}
+
 // ---- distributing (RBE3) patches on imported solids
 
 // Face integrals of the shape functions on flat faces, by hand: bilinear

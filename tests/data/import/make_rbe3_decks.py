@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the CalculiX decks of the fitting with two distributing (RBE3) patches
-from fitting_mesh.inp (make_fitting.py):
+from fitting_mesh.inp (examples/imported-fitting/make_fitting.py):
   PADS patch: the bottom faces (S1) of the four base elements under the bolt pads
               (|x| >= 11.25 mm, 350 mm^2), reference point (0, 0, 0);
   LUG patch:  the top faces (S2) of the lug's two top elements (z = 25 mm,
