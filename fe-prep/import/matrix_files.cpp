@@ -350,6 +350,12 @@ AbaqusMatrix readAbaqusMatrix(const std::string& path, long dof_count) {
       Raw r{toLong(f[0], path, line, "a node label"), toLong(f[1], path, line, "a DOF 1..6"),
             toLong(f[2], path, line, "a node label"), toLong(f[3], path, line, "a DOF 1..6"),
             toDouble(f[4], path, line, "a value"), line};
+      for (long n : {r.n1, r.n2})
+        if (n <= 0)
+          fail(path, line, "node label " + std::to_string(n) + ": Abaqus writes its internal nodes (the Lagrange "
+                           "multipliers of constraints: MPCs, couplings, connectors) with labels below 1; they are not "
+                           "structural DOF and are not imported (export the model without those constraints and give them "
+                           "as fe-prep interfaces or reference conditions)");
       for (long d : {r.d1, r.d2})
         if (d < 1 || d > 6)
           fail(path, line, "DOF " + std::to_string(d) + " is not a structural DOF 1..6 (Lagrange multipliers, "

@@ -335,6 +335,45 @@ TEST(MatrixImportFitting, RigidPatchStaticDeflectionMatchesCalculix) {
   EXPECT_NEAR(c(1) / (3.988351e-6 / 100.0), 1.0, 1e-5);
 }
 
+// The two text layouts of Abaqus's *MATRIX OUTPUT (docs/file-formats.md gives
+// the sources): FORMAT=COORDINATE ('row column  value', blanks, both triangles,
+// global equation numbers; rows named by a dofs: list) and FORMAT=MATRIX INPUT
+// ('node,dof,node,dof,value', commas, lower triangle; rows named by the file).
+// tests/data/import/brick_*: one C3D20 brick's CalculiX matrices written in both
+// layouts by make_abaqus_layouts.py; each reads back as CalculiX's matrix
+// exactly (the same decimal strings, so the same doubles: difference 0).
+TEST(MatrixImportReaders, BothAbaqusLayoutsReadAsTheSourceMatrix) {
+  const DofList d = readDofList(kData + "brick_matrices.dof");
+  const long n = static_cast<long>(d.dofs.size());
+  ASSERT_EQ(n, 60);
+  for (const auto& [ccx, abq, name] : {std::tuple{"sti", "STIF1", "stiffness"}, std::tuple{"mas", "MASS1", "mass"}}) {
+    const Eigen::SparseMatrix<double> ref =
+        symmetricMatrix(readTripletMatrix(kData + "brick_matrices." + ccx, n), n, name, d);
+    const AbaqusMatrix coord = readAbaqusMatrix(kData + "brick_coordinate_" + abq + ".mtx", n);
+    EXPECT_TRUE(coord.dofs.dofs.empty());
+    EXPECT_EQ(coord.matrix.indexing, "one-based");
+    std::string storage;
+    const Eigen::SparseMatrix<double> a = symmetricMatrix(coord.matrix, n, name, d, &storage);
+    EXPECT_EQ(storage, "both triangles");
+    EXPECT_EQ((a - ref).norm(), 0.0) << abq;
+    const AbaqusMatrix input = readAbaqusMatrix(kData + "brick_matrix_input_" + abq + ".mtx", 0);
+    ASSERT_EQ(input.dofs.dofs.size(), d.dofs.size());
+    for (long i = 0; i < n; ++i) {
+      EXPECT_EQ(input.dofs.dofs[static_cast<std::size_t>(i)].node, d.dofs[static_cast<std::size_t>(i)].node);
+      EXPECT_EQ(input.dofs.dofs[static_cast<std::size_t>(i)].dof, d.dofs[static_cast<std::size_t>(i)].dof);
+    }
+    const Eigen::SparseMatrix<double> b = symmetricMatrix(input.matrix, n, name, input.dofs, &storage);
+    EXPECT_EQ(storage, "lower triangle");
+    EXPECT_EQ((b - ref).norm(), 0.0) << abq;
+  }
+  // Abaqus's internal nodes (Lagrange multipliers) carry labels below 1: refused, located.
+  const std::string dir = test::scratchDir("import_abaqus_internal");
+  const std::string bad = write(dir, "internal.mtx", "1,1,1,1,2.0\n-3,1,1,1,0.5\n");
+  const std::string msg = errorOf([&] { readAbaqusMatrix(bad, 0); });
+  EXPECT_NE(msg.find("internal.mtx:2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node label -3"), std::string::npos) << msg;
+}
+
 // CalculiX's matrix storage of a beam (B32R, expanded by ccx into a C3D20R
 // brick) names each brick node by its parent beam node: refused with the
 // reason (tests/data/import/beam_b32_matrices.inp, the .dof ccx 2.20 wrote).
