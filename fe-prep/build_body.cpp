@@ -397,7 +397,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
     else if (spec.shell && spec.shell->rectangle) projection.z() = 0.0;
     mesh_interfaces.push_back(resolveInterface(mesh, i, projection));
-    if (imported) checkImportedInterface(*imported, mesh_interfaces.back(), i);
+    if (imported) {
+      const std::string note = checkImportedInterface(*imported, mesh_interfaces.back(), i);
+      if (!note.empty() && !quiet && rank == 0) std::printf("  %s\n", note.c_str());
+    }
     FlexInterface fi;
     fi.name = i.name;
     fi.node = mesh_interfaces.back().node;

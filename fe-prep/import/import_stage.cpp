@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "fe-prep/assembly.h"
+#include "fe-prep/import/solid_faces.h"
 #include "fe-prep/modal_solver.h"
 
 namespace fc::feprep {
@@ -97,16 +98,32 @@ RigidProperties importedRigidProperties(const ImportedModel& model) {
   return r;
 }
 
-void checkImportedInterface(const ImportedModel& model, MeshInterface& mi, const InterfaceSpec& spec) {
+std::string checkImportedInterface(const ImportedModel& model, MeshInterface& mi, const InterfaceSpec& spec) {
   if (mi.coupling == Coupling::Node && model.solid[static_cast<std::size_t>(mi.node)])
     spec.node.fail("interface '" + spec.name + "' would attach to node " +
                    std::to_string(model.labels[static_cast<std::size_t>(mi.node)]) +
                    ", a solid node without rotations; give it a patch: {point: [...], coupling: distributing or rigid, "
                    "nodes: {within: R | box: [...] | edge: NSET}}");
-  if (mi.coupling == Coupling::Distributing) {
+  if (mi.coupling != Coupling::Distributing) return "";
+  long faces = 0;
+  double area = 0.0;
+  const Eigen::VectorXd w = patchFaceWeights(model.mesh.nodes, model.faces, mi.nodes, &faces, &area);
+  char buf[256];
+  if (faces > 0) {
+    mi.weights = w;
+    long carried = 0;
+    for (long i = 0; i < w.size(); ++i) carried += w(i) != 0.0 ? 1 : 0;
+    std::snprintf(buf, sizeof buf, "interface '%s': distributing patch of %zu nodes weighted by %ld solid faces "
+                  "(%.6g m^2; %ld nodes carry area, the others weigh 0)", spec.name.c_str(), mi.nodes.size(), faces, area, carried);
+  } else {
+    // No element face lies wholly in the patch (6-DOF nodes of shells or beams,
+    // whose faces the import does not build, or a patch narrower than one face).
     mi.weights = Eigen::VectorXd::Ones(static_cast<long>(mi.nodes.size()));
-    mi.W = distributingMap(model.mesh, mi.nodes, mi.weights, mi.point);
+    std::snprintf(buf, sizeof buf, "interface '%s': distributing patch of %zu nodes weighted equally (no solid element "
+                  "face lies wholly in the patch)", spec.name.c_str(), mi.nodes.size());
   }
+  mi.W = distributingMap(model.mesh, mi.nodes, mi.weights, mi.point);
+  return buf;
 }
 
 }  // namespace fc::feprep

@@ -6,6 +6,8 @@
 // nodes. Kept apart so that build_body.cpp only branches into them.
 #include <mpi.h>
 
+#include <string>
+
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/import/imported_body.h"
@@ -29,9 +31,12 @@ ImportedLumping importedLumping(MPI_Comm comm, const ImportedModel& model, bool 
 // The exact rigid-body properties: the projection of the imported M.
 RigidProperties importedRigidProperties(const ImportedModel& model);
 
-// A point interface on a solid node would carry no rotation (refused); a
-// distributing patch of an imported body weighs its nodes equally (the import
-// has no element faces to take tributary areas from), W recomputed here.
-void checkImportedInterface(const ImportedModel& model, MeshInterface& mi, const InterfaceSpec& spec);
+// A point interface on a solid node would carry no rotation (refused). A
+// distributing patch of an imported body is weighed by the solid elements'
+// faces that lie wholly in it (patchFaceWeights, solid_faces.h: each node's
+// integral of its face shape functions, as CalculiX's *DISTRIBUTING); with no
+// such face (6-DOF nodes, or a patch narrower than a face) its nodes weigh
+// equally. W recomputed here; returns the line the import report prints.
+std::string checkImportedInterface(const ImportedModel& model, MeshInterface& mi, const InterfaceSpec& spec);
 
 }  // namespace fc::feprep

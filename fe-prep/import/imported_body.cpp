@@ -186,6 +186,12 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
     if (!members.empty()) out.mesh.sets[name] = members;
   }
 
+  {
+    std::vector<long> sorted_labels, sorted_index;
+    for (const auto& [label, k] : index) sorted_labels.push_back(label), sorted_index.push_back(k);
+    out.faces = boundaryFaces(table.solid_elements, sorted_labels, sorted_index);
+  }
+
   // To SI on 6 DOF per node: a DOF's SI value is s times the file's (s = L for
   // translations, 1 for rotations), energies scale by E and kinetic energies by
   // m L^2: K_ij (SI) = E K_ij / (s_i s_j), M_ij (SI) = m L^2 M_ij / (s_i s_j).

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fe-prep/import/matrices_spec.h"
+#include "fe-prep/import/solid_faces.h"
 #include "fe-prep/assembly.h"
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/mesh.h"
@@ -27,6 +28,7 @@ struct ImportedModel {
   std::vector<long> labels;    // the source's label of each mesh node
   std::vector<char> solid;     // the node has translations only
   Eigen::SparseMatrix<double> K, M;  // (6 n, 6 n) SI, node-major body DOF
+  std::vector<SolidFace> faces;  // the solid elements' boundary faces (mesh indices): distributing patch weights
   Mesh pairs;                  // mesh nodes with beams = the coupled node pairs (i <= j), for assemble()
   std::string storage_K, storage_M, indexing;  // what the readers found
   long source_dofs = 0;        // rows of the imported matrices

@@ -156,6 +156,7 @@ void readInp(const std::string& path, NodeTable& t, std::set<std::string>& visit
                                    " nodes, got " + std::to_string(pending.size()) + " numbers");
     auto& dst = elem_solid ? t.solid_nodes : t.structural_nodes;
     dst.insert(dst.end(), pending.begin() + 1, pending.end());
+    if (elem_solid) t.solid_elements.push_back({elem_type, std::vector<long>(pending.begin() + 1, pending.end())});
     ++t.element_counts[elem_type];
     pending.clear();
   };
@@ -349,6 +350,12 @@ AbaqusMatrix readAbaqusMatrix(const std::string& path, long dof_count) {
       Raw r{toLong(f[0], path, line, "a node label"), toLong(f[1], path, line, "a DOF 1..6"),
             toLong(f[2], path, line, "a node label"), toLong(f[3], path, line, "a DOF 1..6"),
             toDouble(f[4], path, line, "a value"), line};
+      for (long n : {r.n1, r.n2})
+        if (n <= 0)
+          fail(path, line, "node label " + std::to_string(n) + ": Abaqus writes its internal nodes (the Lagrange "
+                           "multipliers of constraints: MPCs, couplings, connectors) with labels below 1; they are not "
+                           "structural DOF and are not imported (export the model without those constraints and give them "
+                           "as fe-prep interfaces or reference conditions)");
       for (long d : {r.d1, r.d2})
         if (d < 1 || d > 6)
           fail(path, line, "DOF " + std::to_string(d) + " is not a structural DOF 1..6 (Lagrange multipliers, "
@@ -414,7 +421,9 @@ DofList readDofList(const std::string& path) {
     auto [it, fresh] = seen.emplace(std::make_pair(d.node, d.dof), line);
     if (!fresh)
       fail(path, line, "node " + std::to_string(d.node) + " DOF " + std::to_string(d.dof) + " listed again (first at line " +
-                           std::to_string(it->second) + ")");
+                           std::to_string(it->second) + "); CalculiX writes this for beam and shell elements (B31, B32, "
+                           "S3..S8), which it expands into bricks: it names every brick node by its parent node, so the "
+                           "rows have no coordinates and are not imported (docs/file-formats.md, \"Imported matrices\")");
     out.dofs.push_back(d);
   }
   if (out.dofs.empty()) fail(path, line, "no DOF lines found; expected 'node dof' per matrix row");

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "fe-prep/import/solid_faces.h"
+
 namespace fc::feprep {
 
 // One entry as stored, indices 0-based once the reader has decided the base.
@@ -51,6 +53,7 @@ struct NodeTable {
   // (shell, beam: 6-DOF) elements, from the *ELEMENT TYPE=... blocks.
   std::vector<long> solid_nodes, structural_nodes;
   std::map<std::string, long> element_counts;    // element type -> count
+  std::vector<SolidElement> solid_elements;      // the solid elements (their faces weigh distributing patches)
 };
 
 // Matrix Market coordinate real (general or symmetric) files, one-based by the format.
