@@ -288,6 +288,8 @@ std::string keptText(const std::vector<long>& keep) {
 }  // namespace
 
 Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
+  // A Nastran deck was read with the YAML, on every rank, properties and all.
+  if (spec.general && spec.general->deck_mesh) return *spec.general->deck_mesh;
   int rank;
   MPI_Comm_rank(comm, &rank);
   Mesh mesh;
