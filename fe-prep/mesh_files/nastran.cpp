@@ -617,7 +617,7 @@ void Builder::readBeamProperty(const Card& k) {
       dim.push_back(d);
     }
     const double nsm = k.realOr(i, "NSM", 0.0) * nsm_unit;
-    const double nu = E / (2 * G) - 1;
+    const double nu = m.m.nu12;
     if (type == "ROD") {
       s = solidCircleSection(2 * dim[0], E, nu, rho);  // DIM1 is the radius
     } else if (type == "TUBE") {
