@@ -184,3 +184,26 @@ write("panel_free.bdf", "$ stiffened panel, free field (make_decks.py)\n" +
 grids, cards = deck("small", L=1e-3, M=1e3)
 write("panel_mm.bdf", "$ stiffened panel in mm-t-s (make_decks.py)\n" +
       "".join(small(n, f) for n, f in grids + cards))
+
+# The example's deck (examples/stiffened-panel/panel.bdf): the mm-t-s deck with
+# an executive section and comments, as a deck from a pre-processor looks.
+grids, cards = deck("small", L=1e-3, M=1e3)
+example = os.path.join(HERE, "..", "..", "..", "..", "examples", "stiffened-panel", "panel.bdf")
+with open(example, "w") as f:
+    f.write("$ The stiffened panel of panel.geo as a Nastran deck, in mm-t-s (N, MPa, t/mm^3),\n"
+            "$ on a structured 16 x 8 quadrilateral mesh; written by\n"
+            "$ tests/data/fe-prep/nastran/make_decks.py (README.md, 'From a Nastran deck').\n"
+            "SOL 103\nCEND\nBEGIN BULK\n"
+            "$ IM6 plies (MAT8) and the aluminium stringers (MAT1)\n")
+    named = {"MAT8": "", "PCOMP": "$ skin: [0/45/-45/90]s, 0.25 mm plies, 0.2 kg/m^2 of paint (NSM)\n",
+             "PBARL": "$ stringers: 4 x 25 mm blades (DIM1 along v = y, DIM2 along z)\n",
+             "CQUAD4": "$ skin elements (THETA blank: 0 deg along G1-G2 = x)\n",
+             "CBAR": "$ stringer elements on the skin's grids, v = (0, 1, 0)\n",
+             "SPC1": "$ root edge (SPC set 1), the hinge (RBE2 9100) and the fitting's mass (CONM2 9200)\n"}
+    seen = set()
+    for n, fl in cards:
+        if n in named and n not in seen:
+            f.write(named[n])
+            seen.add(n)
+        f.write(small(n, fl))
+    f.write("$ grids\n" + "".join(small(n, fl) for n, fl in grids) + "ENDDATA\n")
