@@ -341,5 +341,37 @@ RBE3,7,,9,123456,2.,123,1,2
   EXPECT_EQ(r.weights(2), 1.0);
 }
 
+
+// An RBE3 named as an interface ({rbe: EID}) is a distributing coupling at its
+// REFGRID with the deck's weights: scaling every weight leaves the body as it
+// is (the fit is a weighted mean), while the tributary weights fe-prep takes
+// for the same nodes as a set give other interface shapes (the edge's end
+// nodes carry half) - the deck's weights are the ones used. RBE3 adds no
+// stiffness: the modes of the three bodies are the same.
+TEST(Nastran, Rbe3InterfaceUsesTheDecksWeights) {
+  std::ifstream in(kData + "panel_free.bdf");
+  const std::string base((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto deckWith = [&](const std::string& name, const std::string& w) {
+    return writeDeck(name, base + "GRID,9999,,0.4,0.,0.05\nRBE3,9300,,9999,123456," + w +
+                               ",123,17,34\n+,51,68,85,102,119,136,153\n");
+  };
+  const std::string one = deckWith("rbe3_one.bdf", "1."), two = deckWith("rbe3_two.bdf", "2.");
+  auto yaml = [](const std::string& deck, const std::string& tip) {
+    return "body:\n  mesh: {file: " + deck + "}\n  interfaces:\n    hinge: {rbe: 9100}\n    tip: " + tip +
+           "\n  reference: {clamp: [hinge]}\n  modes: 6\n";
+  };
+  const BuildResult a = runYaml(yaml(one, "{rbe: 9300}")), b = runYaml(yaml(two, "{rbe: 9300}"));
+  const BuildResult t = runYaml(yaml(one, "{point: [0.4, 0.0, 0.05], coupling: distributing, nodes: {set: RBE9300}}"));
+  EXPECT_LT((a.body.interface("tip").position - Eigen::Vector3d(0.4, 0.0, 0.05)).norm(), 1e-15);
+  const Eigen::MatrixXd &sa = a.body.interface("tip").shapes, &sb = b.body.interface("tip").shapes,
+                        &st = t.body.interface("tip").shapes;
+  // Same matrices, same solver: the shapes agree to rounding (1e-12 of the largest).
+  EXPECT_LT((sa - sb).cwiseAbs().maxCoeff(), 1e-12 * sa.cwiseAbs().maxCoeff());
+  for (long j = 0; j < 6; ++j) EXPECT_NEAR(a.body.eigenvalues(j), t.body.eigenvalues(j), 1e-10 * t.body.eigenvalues(j));
+  // The torsion-like modes move the edge's ends most: equal weights and tributary
+  // weights (ends at half) differ there by far more than rounding.
+  EXPECT_GT((sa - st).cwiseAbs().maxCoeff(), 1e-3 * sa.cwiseAbs().maxCoeff());
+}
+
 }  // namespace
 }  // namespace fc::feprep::test
