@@ -238,6 +238,9 @@ struct Card {
   }
 };
 
+// The card's id (its first field) for messages: "GRID 12".
+std::string firstField(const NastranCard& c) { return c.fields.empty() ? std::string() : c.fields[0].text; }
+
 // ---------------------------------------------------------------- coordinate systems
 
 struct Cord {
@@ -680,7 +683,7 @@ NastranModel Builder::build() {
 
   // Pass 0: coordinate systems, grids, materials.
   for (const NastranCard* c : by_pass[0]) {
-    const Card k{*c, ""};
+    const Card k{*c, firstField(*c)};
     if (c->name == "CORD2R" || c->name == "CORD2C") {
       Cord cs;
       cs.cid = k.positive(0, "CID");
@@ -720,7 +723,7 @@ NastranModel Builder::build() {
   }
   // Pass 1: properties.
   for (const NastranCard* c : by_pass[1]) {
-    const Card k{*c, ""};
+    const Card k{*c, firstField(*c)};
     const long pid = k.positive(0, "PID");
     if (!pid_card_.emplace(pid, c).second)
       k.fail(0, "PID", "a second property with id " + std::to_string(pid) + " (the first at " + pid_card_[pid]->file + ":" +
@@ -747,7 +750,7 @@ NastranModel Builder::build() {
   std::map<long, const NastranCard*> eids;
   std::set<long> rod_grids, bending_grids;
   for (const NastranCard* c : by_pass[2]) {
-    const Card k0{*c, ""};
+    const Card k0{*c, firstField(*c)};
     const long eid = k0.positive(0, "EID");
     const Card k{*c, std::to_string(eid)};
     if (!eids.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
@@ -936,7 +939,7 @@ NastranModel Builder::build() {
     return g;
   };
   for (const NastranCard* c : by_pass[3]) {
-    const Card k0{*c, ""};
+    const Card k0{*c, firstField(*c)};
     const std::string& n = c->name;
     if (n == "SPC1") {
       const long sid = k0.positive(0, "SID");
@@ -1021,7 +1024,7 @@ NastranModel Builder::build() {
   }
   for (const NastranCard* c : by_pass[3]) {
     if (c->name != "CONM2") continue;
-    const Card k0{*c, ""};
+    const Card k0{*c, firstField(*c)};
     const long eid = k0.positive(0, "EID");
     const Card k{*c, std::to_string(eid)};
     if (!eids.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
