@@ -15,6 +15,7 @@
 #include "common/laminate.h"
 #include "common/stress_data.h"
 #include "fe-prep/element_properties.h"
+#include "fe-prep/elements/shell_frame.h"
 
 namespace fc::feprep {
 
@@ -739,6 +740,7 @@ NastranModel Builder::build() {
     std::vector<long> g;
     long pid;
     Eigen::Vector3d axis;
+    const NastranCard* card;
   };
   struct Line {
     long ga, gb, pid;
@@ -766,6 +768,7 @@ NastranModel Builder::build() {
                                               : "no PSHELL or PCOMP " + std::to_string(pid) + " in the deck");
       Shell s;
       s.pid = pid;
+      s.card = c;
       std::vector<Eigen::Vector3d> x;
       for (std::size_t j = 0; j < nn; ++j) {
         const long gid = k.positive(2 + j, "G" + std::to_string(j + 1));
@@ -902,6 +905,18 @@ NastranModel Builder::build() {
     };
     add(s.g[0], s.g[1], s.g[2]);
     if (s.g.size() == 4) add(s.g[0], s.g[2], s.g[3]);  // the 1-3 diagonal, as the .msh reader
+    // Each triangle must have a frame (not degenerate, the axis not along its normal).
+    for (std::size_t t = mesh.triangles.size() - (s.g.size() - 2); t < mesh.triangles.size(); ++t) {
+      Eigen::Matrix3d xyz;
+      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[t][static_cast<std::size_t>(i)]);
+      try {
+        fe::shellFrame(xyz, s.axis);
+      } catch (const std::invalid_argument& e) {
+        failAt(s.card->file, s.card->line, s.card->name + " " + firstField(*s.card),
+               std::string(e.what()) + (s.g.size() == 4 ? " (in one of the two triangles on the G1-G3 diagonal)" : "") +
+                   "; expected distinct grids spanning a plane, and a THETA/MCID axis not normal to it");
+      }
+    }
   }
   for (const auto& l : lines) {
     mesh.beams.push_back({node(l.ga), node(l.gb)});
@@ -1124,8 +1139,11 @@ void applyNastranDeck(BodySpec& spec) {
   NastranModel model;
   try {
     cards = readNastranCards(g.file);
+    if (cards.empty()) g.file_node.fail("the deck '" + g.file + "' has no bulk data cards");
     model = nastranModel(cards, *u, g.ignore);
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    // Errors of the whole deck (no line to name: unsupported cards, no elements) at the YAML's key.
+    if (e.line() == 0 && e.file() != g.file_node.file()) g.file_node.fail("the deck '" + g.file + "': " + e.message());
     throw;
   } catch (const std::exception& e) {
     g.file_node.fail(std::string("cannot read the Nastran deck: ") + e.what());
