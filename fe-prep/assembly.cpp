@@ -92,17 +92,18 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
   Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> buf;
   out.lumped = Eigen::VectorXd::Zero(6 * n);
   long mine = 0, done = 0;
+  // Elements are the triangles, then the beams, then the point masses (one node each):
+  // the point masses' index must not run on into the beams (it read past them).
+  const long n_tri = static_cast<long>(mesh.triangles.size()), n_beam = static_cast<long>(mesh.beams.size());
+  auto firstNode = [&](long e) {
+    if (e < n_tri) return mesh.triangles[static_cast<std::size_t>(e)][0];
+    if (e < n_tri + n_beam) return mesh.beams[static_cast<std::size_t>(e - n_tri)][0];
+    return mesh.point_masses[static_cast<std::size_t>(e - n_tri - n_beam)].node;
+  };
+  for (long e = 0; e < elements; ++e)
+    if (owner(firstNode(e)) == rank) ++mine;
   for (long e = 0; e < elements; ++e) {
-    const long first_node = !mesh.triangles.empty() && e < static_cast<long>(mesh.triangles.size())
-                                ? mesh.triangles[static_cast<std::size_t>(e)][0]
-                                : mesh.beams[static_cast<std::size_t>(e - static_cast<long>(mesh.triangles.size()))][0];
-    if (owner(first_node) == rank) ++mine;
-  }
-  for (long e = 0; e < elements; ++e) {
-    const long first_node = e < static_cast<long>(mesh.triangles.size())
-                                ? mesh.triangles[static_cast<std::size_t>(e)][0]
-                                : mesh.beams[static_cast<std::size_t>(e - static_cast<long>(mesh.triangles.size()))][0];
-    if (owner(first_node) != rank) continue;
+    if (owner(firstNode(e)) != rank) continue;
     kernel(e, er);
     for (std::size_t a = 0; a < er.nodes.size(); ++a)
       out.lumped.segment<6>(6 * er.nodes[a]) += er.lumped.segment<6>(6 * static_cast<long>(a));

@@ -8,6 +8,7 @@
 #include "common/h5io.h"
 #include "common/materials.h"
 #include "common/units.h"
+#include "fe-prep/mesh_files/nastran.h"
 
 namespace fc::feprep {
 namespace {
@@ -218,6 +219,16 @@ MaterialAxis parseAxis(const InputNode& a) {
   return axis;
 }
 
+GeneralMeshSpec parseIgnore(const InputNode& b, GeneralMeshSpec& g) {
+  if (b.has("ignore")) {
+    const InputNode ig = b["ignore"];
+    g.ignore_node = ig;
+    if (!ig.isSequence()) ig.fail(g.nastran ? "expected a list of card names (and PID<n> properties)" : "expected a list of physical group names");
+    for (std::size_t i = 0; i < ig.size(); ++i) g.ignore.push_back(ig.at(i).asString());
+  }
+  return g;
+}
+
 // body.mesh: {file: F, size: h}, units:, regions:, ignore:.
 GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& materials, const LaminateLibrary& laminates,
                              BodySpec& body) {
@@ -236,8 +247,13 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
   body.input_files.push_back(g.file);
   const std::string f = g.file;
   auto ends = [&](const std::string& e) { return f.size() >= e.size() && f.compare(f.size() - e.size(), e.size(), e) == 0; };
-  if (!ends(".msh") && !ends(".geo"))
-    g.file_node.fail("unknown mesh file type '" + f + "'; expected a gmsh .msh (format 2.2 or 4.x) or .geo file");
+  g.nastran = isNastranFile(f);
+  if (!ends(".msh") && !ends(".geo") && !g.nastran)
+    g.file_node.fail("unknown mesh file type '" + f + "'; expected a gmsh .msh (format 2.2 or 4.x) or .geo file, "
+                     "or a Nastran bulk-data deck (.bdf, .dat, .nas, .bulk)");
+  if (g.nastran)
+    for (const char* k : {"size", "max_triangles"})
+      if (mesh.has(k)) mesh[k].fail(std::string(k) + " is for gmsh files; a Nastran deck is read as meshed");
   if (mesh.has("size")) g.size = mesh["size"].asLength(kMinLength, kMaxBodyLength);
   if (mesh.has("max_triangles")) {
     g.max_triangles = mesh["max_triangles"].asInt();
@@ -255,6 +271,8 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
     }
     g.length_scale = u->length;
   }
+  // A Nastran deck carries its own properties: regions: only override them (PID<n>).
+  if (g.nastran && !b.has("regions")) return parseIgnore(b, g);
   const InputNode regions = b["regions"];
   if (!regions.isMap() || regions.keys().empty())
     regions.fail("expected a map GROUP: {shell: {...}} or GROUP: {beam: {...}}, one entry per physical group");
@@ -290,13 +308,7 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
     }
     g.regions.push_back(reg);
   }
-  if (b.has("ignore")) {
-    const InputNode ig = b["ignore"];
-    g.ignore_node = ig;
-    if (!ig.isSequence()) ig.fail("expected a list of physical group names");
-    for (std::size_t i = 0; i < ig.size(); ++i) g.ignore.push_back(ig.at(i).asString());
-  }
-  return g;
+  return parseIgnore(b, g);
 }
 
 }  // namespace
@@ -342,6 +354,24 @@ BodySpec parseBodySpec(const InputNode& root) {
     if (!in.isMap()) in.fail("expected a map NAME: [x, y, z] or NAME: {point, coupling, nodes}");
     for (const auto& key : in.keys()) {
       const InputNode entry = in[key];
+      if (entry.isMap() && (entry.has("grid") || entry.has("rbe"))) {
+        // A Nastran deck's GRID or RBE2/RBE3 by id: point, coupling and patch come from the deck.
+        entry.allowKeys({"grid", "rbe"});
+        if (!spec.general || !spec.general->nastran)
+          entry.fail("{grid: ID} and {rbe: EID} name a Nastran deck's grids and rigid elements; this body has no deck "
+                     "(mesh: {file: DECK.bdf})");
+        if (entry.has("grid") == entry.has("rbe")) entry.fail("expected one of grid: ID or rbe: EID");
+        InterfaceSpec i;
+        i.name = key;
+        i.node = entry;
+        const InputNode id = entry.has("grid") ? entry["grid"] : entry["rbe"];
+        const long v = id.asInt();
+        if (v <= 0) id.fail("expected an identification number > 0");
+        (entry.has("grid") ? i.grid : i.rbe) = v;
+        names.insert(key);
+        spec.interfaces.push_back(i);
+        continue;
+      }
       const InputNode p = entry.isMap() ? entry["point"] : entry;
       InterfaceSpec i;
       i.name = key;
@@ -546,6 +576,7 @@ BodySpec parseBodySpec(const InputNode& root) {
       b["geometric_stiffness"].fail("geometric stiffness needs a reference that holds the body (reference: {clamp: [...]}): "
                                     "the stress of the inertial loads is the static response of the held body");
   }
+  if (spec.general && spec.general->nastran) applyNastranDeck(spec);
   return spec;
 }
 

@@ -4,6 +4,8 @@
 // name the mesh does not have, a point outside the panel) still name the
 // file, line and key.
 #include <Eigen/Dense>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,6 +88,11 @@ struct GeneralMeshSpec {
   InputNode ignore_node;
   std::vector<MassSpec> masses;
   long max_triangles = 500000;
+  // A Nastran deck (.bdf, .dat, .nas, .bulk): read while the YAML is parsed, its
+  // mesh with every element's property, sets and masses (fe-prep/mesh_files/nastran.h).
+  bool nastran = false;
+  std::shared_ptr<const Mesh> deck_mesh;
+  std::map<std::string, int> deck_element_counts;  // CQUAD4, CTRIA3, CBAR... as in the deck
 };
 
 // How an interface point is attached (contracts.md, fe-prep "Distributed interfaces").
@@ -102,6 +109,11 @@ struct InterfaceSpec {
   std::string edge;             // nodes: {edge: NAME} or {set: NAME}
   Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();  // nodes: {box: [lo, hi]}
   InputNode nodes_node;
+  // A Nastran deck's own: {grid: ID} (the grid's node) or {rbe: EID} (an RBE2's
+  // rigid or an RBE3's distributing patch, its point the GN / REFGRID), resolved
+  // with the deck (applyNastranDeck); an RBE3's weights as the deck gives them.
+  long grid = 0, rbe = 0;
+  Eigen::VectorXd given_weights;
 };
 
 struct ReferenceEntry {

@@ -228,6 +228,17 @@ std::vector<std::string> regionSummary(const BodySpec& spec, const Mesh& mesh) {
     }
     const ShellProperty& sp = mesh.shell_properties[p];
     std::string axis = "fibre axis [1, 0, 0] (body x)";
+    if (spec.general && spec.general->nastran) {
+      // The deck's THETA/MCID per element: say whether they agree.
+      Eigen::Vector3d first = Eigen::Vector3d::Zero();
+      bool same = true, any = false;
+      for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
+        if (mesh.triangle_property[e] != static_cast<int>(p)) continue;
+        if (!any) first = mesh.triangle_axis[e], any = true;
+        same = same && (mesh.triangle_axis[e] - first).norm() < 1e-9;
+      }
+      axis = same ? "fibre axis " + vec(first) + " (the deck's THETA/MCID)" : "fibre axes per element (the deck's THETA/MCID)";
+    }
     if (spec.general)
       for (const auto& r : spec.general->regions)
         if (r.name == sp.name && r.shell)
@@ -255,6 +266,12 @@ std::vector<std::string> regionSummary(const BodySpec& spec, const Mesh& mesh) {
     std::snprintf(buf, sizeof buf, "%s: %ld beam elements, %.6g kg, section %s, x2 %s", mesh.beam_properties[p].name.c_str(),
                   n, mass, mesh.beam_properties[p].source.c_str(), vec(x2).c_str());
     lines.push_back(buf);
+  }
+  if (spec.general && !spec.general->deck_element_counts.empty()) {
+    std::string t = "deck elements:";
+    for (const auto& [card, n] : spec.general->deck_element_counts) t += " " + card + " " + std::to_string(n);
+    if (spec.general->deck_element_counts.count("CQUAD4")) t += " (each CQUAD4 two triangles)";
+    lines.push_back(t);
   }
   if (!mesh.point_masses.empty()) {
     double m = 0.0;
@@ -288,6 +305,8 @@ std::string keptText(const std::vector<long>& keep) {
 }  // namespace
 
 Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
+  // A Nastran deck was read with the YAML, on every rank, properties and all.
+  if (spec.general && spec.general->deck_mesh) return *spec.general->deck_mesh;
   int rank;
   MPI_Comm_rank(comm, &rank);
   Mesh mesh;

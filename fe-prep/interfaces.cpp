@@ -128,7 +128,9 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& s, const E
     if (d < best) best = d, it.node = k;
   }
   if (s.coupling == Coupling::Distributing) {
-    it.weights = s.select == PatchSelect::Box ? patchAreaWeights(mesh, it.nodes) : tributaryWeights(mesh, it.nodes);
+    // A Nastran RBE3's own weights (its set's nodes are sorted as it.nodes are), else the tributary shares.
+    if (s.given_weights.size() == static_cast<long>(it.nodes.size())) it.weights = s.given_weights;
+    else it.weights = s.select == PatchSelect::Box ? patchAreaWeights(mesh, it.nodes) : tributaryWeights(mesh, it.nodes);
     it.W = distributingMap(mesh, it.nodes, it.weights, it.point);
   }
   return it;
