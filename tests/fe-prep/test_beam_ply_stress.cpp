@@ -409,5 +409,74 @@ TEST(BeamPlyStress, UdStripAsBeamAndAsShellGiveTheSamePlyStresses) {
               tol_tw, d_h, tol_h);
 }
 
+// ---- a mesh-file body's beam region carries the section's recovery basis
+
+TEST(BeamPlyStress, MeshFileBeamRegionCarriesTheBasisLikeABeamBody) {
+  // The same cantilever as a gmsh line of 10 elements in a region whose
+  // section is the tube's file: the body file gets the tube's basis, and the
+  // root station's ply stresses under the tip load are section-prep's recovery
+  // for the static root resultants, as for the beam: body.
+  const std::string dir = scratchDir("beam-ply-stress-mesh");
+  const Section sec = writeSection(dir, true);
+  std::ofstream(dir + "/line.geo") << "Point(1) = {-0.5, 0, 0, 0.1}; Point(2) = {0.5, 0, 0, 0.1};\n"
+                                      "Line(1) = {1, 2}; Transfinite Curve {1} = 11;\n"
+                                      "Physical Curve(\"tube\") = {1}; Physical Point(\"root\") = {1};\n";
+  auto meshBody = [&](const std::string& regions) {
+    return runYaml("body:\n  name: frame\n  mesh: {file: " + dir + "/line.geo}\n  regions:\n" + regions +
+                   "  interfaces: {root: [-0.5, 0, 0], tip: [0.5, 0, 0]}\n"
+                   "  reference: {clamp: [root]}\n  modes: 60\n", "frame.yaml");
+  };
+  const BuildResult b = meshBody("    tube: {beam: {section: {file: " + sec.path + "}, orientation: [0, 1, 0]}}\n");
+  const SectionStressBasis& basis = b.body.stress.section;
+  const long ns = static_cast<long>(sec.mesh.elements.size());
+  ASSERT_EQ(basis.size(), ns);
+  const SectionStressBasis expect_basis = readSectionStressBasis(sec.path);
+  EXPECT_EQ(basis.ply_stress, expect_basis.ply_stress);
+  EXPECT_EQ(basis.strength, expect_basis.strength);
+  ASSERT_EQ(b.body.stress.beam_stations.rows(), 3 * kElements);
+  ASSERT_EQ(b.body.modeCount(), 60);  // the complete basis: the static state exact
+  std::vector<Eigen::VectorXd> f;
+  const auto rec = mbs::beamStressRecovery(b.body.stress);
+  rec->recover(clampedStatic(b.body, "tip", Eigen::Vector3d(0, 0, -kP)), f);
+  ASSERT_EQ(f.size(), 4u);  // section_forces, ply_stress, failure_index, hashin
+  long root = -1;
+  for (long st = 0; st < b.body.stress.beam_stations.rows(); ++st)
+    if (std::abs(b.body.stress.beam_stations(st, 0) + 0.5 * kL) < 1e-12) root = st;
+  ASSERT_GE(root, 0);
+  section::Vector6d R;
+  R << 0, 0, -kP, 0, kP * kL, 0;  // statics at the clamp
+  std::vector<int> mat;
+  for (const auto& e : sec.mesh.elements) mat.push_back(e.material);
+  std::vector<std::optional<PlyStrength>> st;
+  for (const auto& m : sec.mesh.materials) st.push_back(m.strength);
+  const auto expect = section::recoverStresses(sec.p.recovery, mat, st, R);
+  double peak = 0, worst = 0, worst_fi = 0;
+  for (long k = 0; k < ns; ++k) {
+    peak = std::max(peak, expect[k].ply_stress.cwiseAbs().maxCoeff());
+    worst = std::max(worst, (f[1].segment<3>(3 * (root * ns + k)) - expect[k].ply_stress).cwiseAbs().maxCoeff());
+    worst_fi = std::max(worst_fi, std::abs(f[2](root * ns + k) - expect[k].tsai_wu));
+  }
+  std::printf("[   info   ] mesh-file beam region: root ply stresses %.3e of the peak, Tsai-Wu %.3e\n", worst / peak, worst_fi);
+  // The static state of the complete modal basis is exact up to the
+  // eigensolution's rounding (measured 2.4e-13 of the peak).
+  EXPECT_LT(worst / peak, 1e-9);
+  EXPECT_LT(worst_fi, 1e-9);
+
+  // Two regions with different section files: no basis (the body file holds
+  // one), section forces only.
+  const std::string dir2 = scratchDir("beam-ply-stress-mesh-2");
+  const Section other = writeSection(dir2, true);
+  std::ofstream(dir + "/two.geo") << "Point(1) = {-0.5, 0, 0, 0.1}; Point(2) = {0, 0, 0, 0.1}; Point(3) = {0.5, 0, 0, 0.1};\n"
+                                     "Line(1) = {1, 2}; Line(2) = {2, 3}; Transfinite Curve {1, 2} = 6;\n"
+                                     "Physical Curve(\"a\") = {1}; Physical Curve(\"b\") = {2}; Physical Point(\"root\") = {1};\n";
+  const BuildResult two = runYaml("body:\n  name: frame\n  mesh: {file: " + dir + "/two.geo}\n  regions:\n"
+                                  "    a: {beam: {section: {file: " + sec.path + "}, orientation: [0, 1, 0]}}\n"
+                                  "    b: {beam: {section: {file: " + other.path + "}, orientation: [0, 1, 0]}}\n"
+                                  "  interfaces: {root: [-0.5, 0, 0], tip: [0.5, 0, 0]}\n"
+                                  "  reference: {clamp: [root]}\n  modes: 6\n", "two.yaml");
+  EXPECT_TRUE(two.body.stress.section.empty());
+  EXPECT_TRUE(two.body.stress.hasBeam());
+}
+
 }  // namespace
 }  // namespace fc::feprep::test
