@@ -164,6 +164,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
        "(n_out, n_elements or n_stations, n_plies or n_section_elements, 4); with outputs.stress_every the rows of /stress_time"},
       {"results", "/bodies/*/hashin_peak", "1",
        "the largest of each Hashin mode index over every output row (n_elements or n_stations, n_plies or n_section_elements, 4)"},
+      {"results", "/margins/failure_index", "1, s, 1, 1",
+       "(n_bodies_with_index, 4): each outputs.stresses body's peak Tsai-Wu index over the run, its time, element "
+       "(beams: station) and ply (beams: section element), 0-based; attribute bodies lists the rows' bodies"},
       {"results", "/bodies/*/section_forces", "N, N m",
        "outputs.stresses beam bodies: section forces N V2 V3 T M2 M3 at each element midpoint, element section axes "
        "(n_out, n_elements, 6); with outputs.stress_every the rows of /stress_time"},

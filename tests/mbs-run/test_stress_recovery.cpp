@@ -438,6 +438,21 @@ TEST(StressEnvelope, IsTheMaxOverEveryFullRowAndItsTime) {
   EXPECT_GT(rows_differ, 0);
   // The summary's largest index is the envelope's largest.
   EXPECT_EQ(f.doubleAttribute("/", "peak_failure_index"), largest);
+  // The per-member table: one row for p (w has no strengths, b no section
+  // basis), its peak, the first time it is reached, its element and ply.
+  {
+    const Eigen::MatrixXd mt = f.readMatrix("/margins/failure_index");
+    ASSERT_EQ(mt.rows(), 1);
+    ASSERT_EQ(mt.cols(), 4);
+    EXPECT_EQ(f.stringAttribute("/margins/failure_index", "bodies"), "p");
+    EXPECT_EQ(mt(0, 0), largest);
+    int at = 0;
+    for (int i = 1; i < 12; ++i)
+      if (peak[i] > peak[at]) at = i;
+    EXPECT_EQ(mt(0, 1), when[at]);
+    EXPECT_EQ(mt(0, 2), at / 3);
+    EXPECT_EQ(mt(0, 3), at % 3);
+  }
   EXPECT_FALSE(f.exists("/bodies/p/ply_stress_max"));
   // Each Hashin mode's peak is the largest of its rows.
   ASSERT_EQ(f.shape("/bodies/p/hashin"), (std::vector<hsize_t>{11, 4, 3, 4}));
