@@ -75,6 +75,9 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"section", "/recovered/max_stress_index", "1", "(n_elements): maximum-stress index; 0 without strengths"},
       {"section", "/recovered/strength_ratio", "1",
        "(n_elements): load factor at which the Tsai-Wu index reaches 1; 0 without strengths, 1e300 if never"},
+      {"section", "/recovered/hashin", "1",
+       "(n_elements, 4): Hashin's 3D indices, fibre tension, fibre compression, matrix tension, matrix compression "
+       "(docs/stresses.md); 0 for the mode the stress's sign does not select and without strengths"},
       // fe-prep
       {"flexbody", "/mesh/nodes", "m", "undeformed node positions in the body frame (n_nodes, 3)"},
       {"flexbody", "/mesh/triangles", "1", "shell triangles, 0-based node indices (n, 3)"},
@@ -155,6 +158,15 @@ const std::vector<DatasetDoc>& datasetDocs() {
       {"results", "/bodies/*/failure_index", "1",
        "outputs.stresses bodies with ply strengths: Tsai-Wu index of each ply at each element centroid, failure at 1 "
        "(n_out, n_elements, n_plies); with outputs.stress_every the rows of /stress_time"},
+      {"results", "/bodies/*/hashin", "1",
+       "outputs.stresses bodies with ply strengths: Hashin's fibre tension, fibre compression, matrix tension and "
+       "matrix compression indices of each ply (plane-stress form, docs/stresses.md), failure at 1 "
+       "(n_out, n_elements or n_stations, n_plies or n_section_elements, 4); with outputs.stress_every the rows of /stress_time"},
+      {"results", "/bodies/*/hashin_peak", "1",
+       "the largest of each Hashin mode index over every output row (n_elements or n_stations, n_plies or n_section_elements, 4)"},
+      {"results", "/margins/failure_index", "1, s, 1, 1",
+       "(n_bodies_with_index, 4): each outputs.stresses body's peak Tsai-Wu index over the run, its time, element "
+       "(beams: station) and ply (beams: section element), 0-based; attribute bodies lists the rows' bodies"},
       {"results", "/bodies/*/section_forces", "N, N m",
        "outputs.stresses beam bodies: section forces N V2 V3 T M2 M3 at each element midpoint, element section axes "
        "(n_out, n_elements, 6); with outputs.stress_every the rows of /stress_time"},

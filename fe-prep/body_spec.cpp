@@ -301,7 +301,7 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
       const InputNode bm = r["beam"];
       bm.allowKeys({"section", "orientation"});
       parseBeamSection(bm["section"], materials, body, reg.beam_property.Ks, reg.beam_property.Ms,
-                       reg.beam_property.source);
+                       reg.beam_property.source, &reg.section_basis);
       reg.beam_property.name = name;
       reg.orientation = bm["orientation"].asVector(3);
       if (!(reg.orientation.norm() > 0)) bm["orientation"].fail("expected a non-zero vector (the section's x2 direction)");

@@ -65,6 +65,7 @@ struct RegionSpec {
   MaterialAxis axis;
   BeamProperty beam_property;
   Eigen::Vector3d orientation = Eigen::Vector3d::UnitY();  // beams: the section x2 direction
+  SectionStressBasis section_basis;  // beams: the section file's /recovery/ (empty for inline shapes)
 };
 
 // A concentrated mass (body.masses): at a point (nearest node) or an interface's point.

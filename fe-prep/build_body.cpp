@@ -4,6 +4,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -131,6 +132,32 @@ class Stopwatch {
 // its own section and x2 axis. The body file holds one ply table and either
 // shells or beams: a body whose shell regions have different plies, or that
 // mixes shells and beams, gets none (`note` says so).
+// The recovery basis of a mesh-file body's beams: that of the section file all
+// its used beam regions share; none (with `note` saying why) when they use
+// different sections and any of them has a basis.
+SectionStressBasis regionsSectionBasis(const GeneralMeshSpec& g, const Mesh& mesh, std::string& note) {
+  const RegionSpec* first = nullptr;
+  bool any_basis = false, same = true;
+  std::string names;
+  for (const auto& r : g.regions) {
+    if (r.shell) continue;
+    const bool used = std::any_of(mesh.beam_properties.begin(), mesh.beam_properties.end(),
+                                  [&](const auto& p) { return p.name == r.name; });
+    if (!used) continue;
+    any_basis = any_basis || !r.section_basis.empty();
+    names += (names.empty() ? "" : ", ") + r.name + " (" + r.beam_property.source + ")";
+    if (!first) first = &r;
+    else if (r.beam_property.source != first->beam_property.source) same = false;
+  }
+  if (!first || !any_basis) return {};
+  if (!same) {
+    note = "no beam ply stress recovery: the beam regions use different sections [" + names +
+           "] and the body file holds one section basis; section forces only";
+    return {};
+  }
+  return first->section_basis;
+}
+
 StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes, std::string& note) {
   StressRecoveryData d;
   const long nm = shapes.cols();
@@ -190,9 +217,11 @@ StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, co
                                        mesh.beam_x2[static_cast<std::size_t>(e)], mesh.beamProperty(e).Ks) * q;
       }
     }
-    // The section's stresses per unit resultant, for ply stresses at stations
-    // (a beam: body; a mesh-file body's beam regions carry no basis yet).
+    // The section's stresses per unit resultant, for ply stresses at stations:
+    // a beam: body's, or the one section file every beam region of a
+    // mesh-file body uses (the body file holds one basis).
     if (spec.beam) d.section = spec.beam->section_basis;
+    if (spec.general) d.section = regionsSectionBasis(*spec.general, mesh, note);
     if (!d.section.empty()) {
       d.beam_lengths.resize(ne);
       d.beam_stations.resize(3 * ne, 3);

@@ -14,6 +14,7 @@
 #include "mbs-run/output/animation.h"
 #include "mbs-run/mechanics/constraints.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/output/results.h"
 #include "mbs-run/scene/scene.h"
 #include "mbs-run/run/simulation.h"
@@ -162,6 +163,14 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
     else
       std::printf("  margin joint %s: peak reaction force %.4g N at t = %.6g s, moment %.4g N m at t = %.6g s\n",
                   m.joints[j].name.c_str(), p.force, p.force_time, p.moment, p.moment_time);
+  }
+  for (std::size_t k = 0; k < r.body_failure_peaks.size() && k < m.bodies.size(); ++k) {
+    const auto& p = r.body_failure_peaks[k];
+    if (!p.found) continue;
+    const bool beam = m.bodies[k].stress && m.bodies[k].stress->kind == fc::mbs::BodyStressRecovery::Kind::Beam;
+    std::printf("  margin failure index %s: peak %.4g at t = %.6g s (%s %ld, %s %ld, 0-based)%s\n", p.body.c_str(), p.value,
+                p.time, beam ? "station" : "element", p.element, beam ? "section element" : "ply", p.ply,
+                p.value >= 1.0 ? ": FAILURE (index >= 1)" : "");
   }
   for (const auto& l : mg.latches)
     std::printf("  latch %s: at t = %.10g s (angle %.6g rad), arriving at %.4g rad/s\n", m.joints[l.joint].name.c_str(),

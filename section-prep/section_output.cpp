@@ -90,6 +90,7 @@ void writeRecovered(H5File& f, const RecoveryRun& run) {
   const long ne = static_cast<long>(run.elements.size());
   Eigen::MatrixXd s(ne, 6), e(ne, 6), ps(ne, 3), pe(ne, 3);
   Eigen::VectorXd tw(ne), ms(ne), sr(ne);
+  Eigen::MatrixXd hs(ne, 4);
   for (long i = 0; i < ne; ++i) {
     const RecoveredElement& r = run.elements[i];
     s.row(i) = r.stress.transpose();
@@ -99,6 +100,8 @@ void writeRecovered(H5File& f, const RecoveryRun& run) {
     tw(i) = r.tsai_wu;
     ms(i) = r.max_stress;
     sr(i) = std::isfinite(r.strength_ratio) ? r.strength_ratio : 1e300;
+    hs.row(i) << r.hashin.fibre_tension, r.hashin.fibre_compression, r.hashin.matrix_tension,
+        r.hashin.matrix_compression;
   }
   f.writeVector("/recovered/resultants", run.resultants);
   f.writeMatrix("/recovered/stress", s);
@@ -108,6 +111,8 @@ void writeRecovered(H5File& f, const RecoveryRun& run) {
   f.writeVector("/recovered/failure_index", tw);
   f.writeVector("/recovered/max_stress_index", ms);
   f.writeVector("/recovered/strength_ratio", sr);
+  f.writeMatrix("/recovered/hashin", hs);
+  f.setAttribute("/recovered/hashin", "modes", std::string("fibre tension, fibre compression, matrix tension, matrix compression"));
 }
 
 }  // namespace
@@ -128,6 +133,17 @@ void writeSectionFile(const std::string& path, const SectionProperties& p,
   if (run) writeRecovered(w.file(), *run);
   w.commit();
 }
+
+namespace {
+// The governing Hashin mode: FT, FC, MT or MC.
+const char* hashinModeName(const HashinIndices& h) {
+  const double m = h.max();
+  if (m == h.fibre_tension) return "FT";
+  if (m == h.fibre_compression) return "FC";
+  if (m == h.matrix_tension) return "MT";
+  return "MC";
+}
+}  // namespace
 
 void printRecovery(std::ostream& out, const SectionMesh& mesh, const SectionProperties& p,
                    const RecoveryRun& run) {
@@ -153,7 +169,7 @@ void printRecovery(std::ostream& out, const SectionMesh& mesh, const SectionProp
     out << " (no failure index for their elements).\n";
   }
   out << "  elem        x2           x3          s11          s22          s33          s23          "
-         "s13          s12     s_11(ply)    s_22(ply)    t_12(ply)   Tsai-Wu   max-stress  str.ratio\n";
+         "s13          s12     s_11(ply)    s_22(ply)    t_12(ply)   Tsai-Wu   max-stress  str.ratio   Hashin  mode\n";
   long worst = -1;
   for (std::size_t e = 0; e < run.elements.size(); ++e) {
     const RecoveredElement& r = run.elements[e];
@@ -163,11 +179,12 @@ void printRecovery(std::ostream& out, const SectionMesh& mesh, const SectionProp
     for (int i = 0; i < 6; ++i) { std::snprintf(buf, sizeof buf, " %12.5e", r.stress(i)); out << buf; }
     for (int i = 0; i < 3; ++i) { std::snprintf(buf, sizeof buf, " %12.5e", r.ply_stress(i)); out << buf; }
     if (r.has_strength) {
-      std::snprintf(buf, sizeof buf, " %10.4e %10.4e %10.4e", r.tsai_wu, r.max_stress, r.strength_ratio);
+      std::snprintf(buf, sizeof buf, " %10.4e %10.4e %10.4e %10.4e %s", r.tsai_wu, r.max_stress, r.strength_ratio,
+                    r.hashin.max(), hashinModeName(r.hashin));
       out << buf;
       if (worst < 0 || r.tsai_wu > run.elements[worst].tsai_wu) worst = static_cast<long>(e);
     } else {
-      out << "          -          -          -";
+      out << "          -          -          -          -   -";
     }
     out << "\n";
   }

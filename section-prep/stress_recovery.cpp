@@ -74,7 +74,8 @@ std::vector<RecoveredElement> recoverStresses(const std::vector<ElementRecovery>
     RecoveredElement& r = out[e];
     r.stress = basis[e].stress * F;
     r.strain = basis[e].strain * F;
-    r.ply_stress = plyComponents(voigtToAxes(r.stress, basis[e].axes, false));
+    const Vector6d material_stress = voigtToAxes(r.stress, basis[e].axes, false);
+    r.ply_stress = plyComponents(material_stress);
     r.ply_strain = plyComponents(voigtToAxes(r.strain, basis[e].axes, true));
     const auto& st = strengths.at(static_cast<std::size_t>(element_material.at(e)));
     if (st) {
@@ -82,6 +83,7 @@ std::vector<RecoveredElement> recoverStresses(const std::vector<ElementRecovery>
       r.tsai_wu = tsaiWuIndex(*st, r.ply_stress);
       r.max_stress = maxStressIndex(*st, r.ply_stress);
       r.strength_ratio = tsaiWuStrengthRatio(*st, r.ply_stress);
+      r.hashin = hashinIndices(*st, material_stress);
     }
   }
   return out;

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/failure_criteria.h"
 #include "common/materials.h"
 #include "section-prep/cross_section.h"
 
@@ -41,6 +42,9 @@ struct RecoveredElement {
   Eigen::Vector3d ply_strain = Eigen::Vector3d::Zero();  // [e_11, e_22, g_12]
   bool has_strength = false;
   double tsai_wu = 0, max_stress = 0, strength_ratio = 0;  // only with has_strength
+  // Hashin's 3D mode indices from all six stresses in material axes (only
+  // with has_strength; common/failure_criteria.h).
+  HashinIndices hashin;
 };
 
 // `F` = [F1, F2, F3, M1, M2, M3] (N, N m, the /stiffness/timoshenko order).

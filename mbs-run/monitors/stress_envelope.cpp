@@ -22,6 +22,10 @@ void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eige
           at_peak_.segment<3>(3 * i) = f0.segment<3>(3 * i);
         }
     }
+    if (r.hashin_output >= 0) {
+      const Eigen::VectorXd& h = fields[static_cast<std::size_t>(r.hashin_output)];
+      hashin_peak_ = rows_ == 0 ? h : Eigen::VectorXd(hashin_peak_.cwiseMax(h));
+    }
   } else if (rows_ == 0) {
     max_ = min_ = f0;
   } else {
@@ -43,6 +47,8 @@ std::vector<EnvelopeDataset> StressEnvelope::datasets(const BodyStressRecovery& 
     d.push_back({"failure_index_peak", fi, peak_});
     d.push_back({"failure_index_peak_time", fi, peak_time_});
     d.push_back({base + "_at_peak", field, at_peak_});
+    if (r.hashin_output >= 0)
+      d.push_back({"hashin_peak", r.outputs[static_cast<std::size_t>(r.hashin_output)].dims, hashin_peak_});
   } else {
     d.push_back({base + "_max", field, max_});
     d.push_back({base + "_min", field, min_});

@@ -5,6 +5,7 @@
 // written (outputs.stress_every decimates only the full fields).
 //   shells with strengths: per element and ply the largest failure index, the
 //     time of the first row that reaches it, and the ply stresses in that row;
+//     and each Hashin mode's largest index;
 //   shells without strengths: per element, ply and component the largest and
 //     smallest ply stress;
 //   beams: per element and component the largest and smallest section force.
@@ -31,7 +32,7 @@ class StressEnvelope {
   bool empty() const { return rows_ == 0; }
   long rows() const { return rows_; }
   // The datasets to write, in file order: failure_index_peak,
-  // failure_index_peak_time, ply_stress_at_peak (shells with strengths);
+  // failure_index_peak_time, ply_stress_at_peak, hashin_peak (shells with strengths);
   // ply_stress_max, ply_stress_min (shells without); section_forces_max,
   // section_forces_min (beams). Empty before the first row.
   std::vector<EnvelopeDataset> datasets(const BodyStressRecovery& r) const;
@@ -40,6 +41,8 @@ class StressEnvelope {
   long rows_ = 0;
   // Shells with strengths: peak_ (n_el n_plies), peak_time_, at_peak_ (n_el n_plies 3).
   Eigen::VectorXd peak_, peak_time_, at_peak_;
+  // With Hashin indices: each mode's largest value (same layout as `hashin`).
+  Eigen::VectorXd hashin_peak_;
   // The others: componentwise max_ and min_ of the one field.
   Eigen::VectorXd max_, min_;
 };

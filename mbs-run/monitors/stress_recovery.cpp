@@ -33,6 +33,8 @@ TsaiWu tsaiWuCoefficients(const Strength5& st) {
   return c;
 }
 
+PlyStrength plyStrength(const Strength5& st) { return {st(0), st(1), st(2), st(3), st(4)}; }
+
 double tsaiWuIndex(const TsaiWu& c, const Eigen::Vector3d& s) {
   return c.F1 * s(0) + c.F2 * s(1) + c.F11 * s(0) * s(0) + c.F22 * s(1) * s(1) + c.F66 * s(2) * s(2) +
          2 * c.F12 * s(0) * s(1);
@@ -75,6 +77,15 @@ void BodyStressRecovery::recover(const Eigen::VectorXd& q, std::vector<Eigen::Ve
           for (long k = 0; k < n_plies; ++k, s += 3)
             f(el * n_plies + k) = tsaiWuIndex(tsai_wu[static_cast<std::size_t>(k)], Eigen::Vector3d(s[0], s[1], s[2]));
       }
+      if (hashin_output >= 0) {
+        Eigen::VectorXd& h = fields[static_cast<std::size_t>(hashin_output)];
+        h.resize(4 * n_plies * n_elements);
+        const double* s = fields[0].data();
+        for (long i = 0; i < n_plies * n_elements; ++i, s += 3) {
+          const HashinIndices x = hashinIndices(ply_strength[static_cast<std::size_t>(i % n_plies)], Eigen::Vector3d(s[0], s[1], s[2]));
+          h.segment<4>(4 * i) << x.fibre_tension, x.fibre_compression, x.matrix_tension, x.matrix_compression;
+        }
+      }
       break;
     }
     case Kind::Beam:
@@ -96,9 +107,14 @@ std::shared_ptr<const BodyStressRecovery> shellStressRecovery(const StressRecove
   r->ply_operator = plyStressOperator(d.plies);
   r->outputs.push_back({"ply_stress", {r->n_elements, r->n_plies, 3}});
   if (d.plies.hasStrength()) {
-    for (long k = 0; k < r->n_plies; ++k) r->tsai_wu.push_back(tsaiWuCoefficients(d.plies.strength.row(k).transpose()));
+    for (long k = 0; k < r->n_plies; ++k) {
+      r->tsai_wu.push_back(tsaiWuCoefficients(d.plies.strength.row(k).transpose()));
+      r->ply_strength.push_back(plyStrength(d.plies.strength.row(k).transpose()));
+    }
     r->failure_output = static_cast<int>(r->outputs.size());
     r->outputs.push_back({"failure_index", {r->n_elements, r->n_plies}});
+    r->hashin_output = static_cast<int>(r->outputs.size());
+    r->outputs.push_back({"hashin", {r->n_elements, r->n_plies, 4}});
   }
   return r;
 }
@@ -115,8 +131,10 @@ void BodyStressRecovery::recoverBeamPlies(std::vector<Eigen::VectorXd>& fields) 
   const long ns = n_plies, ne = beam_lengths.size();
   Eigen::VectorXd& ply = fields[static_cast<std::size_t>(ply_output)];
   Eigen::VectorXd& fi = fields[static_cast<std::size_t>(failure_output)];
+  Eigen::VectorXd& hs = fields[static_cast<std::size_t>(hashin_output)];
   ply.resize(3 * 3 * ne * ns);
   fi.setZero(3 * ne * ns);
+  hs.setZero(4 * 3 * ne * ns);
   for (long e = 0; e < ne; ++e) {
     const Vector6d mid = fields[0].segment<6>(6 * e);
     for (int j = 0; j < 3; ++j) {
@@ -124,8 +142,12 @@ void BodyStressRecovery::recoverBeamPlies(std::vector<Eigen::VectorXd>& fields) 
       const Vector6d R = resultantsAtStation(mid, 0.5 * (j - 1) * beam_lengths(e));
       ply.segment(3 * ns * st, 3 * ns).noalias() = section_ply * R;
       for (long k = 0; k < ns; ++k)
-        if (section_has_strength[static_cast<std::size_t>(k)])
-          fi(st * ns + k) = tsaiWuIndex(section_tsai_wu[static_cast<std::size_t>(k)], ply.segment<3>(3 * (st * ns + k)));
+        if (section_has_strength[static_cast<std::size_t>(k)]) {
+          const Eigen::Vector3d sk = ply.segment<3>(3 * (st * ns + k));
+          fi(st * ns + k) = tsaiWuIndex(section_tsai_wu[static_cast<std::size_t>(k)], sk);
+          const HashinIndices x = hashinIndices(section_strength[static_cast<std::size_t>(k)], sk);
+          hs.segment<4>(4 * (st * ns + k)) << x.fibre_tension, x.fibre_compression, x.matrix_tension, x.matrix_compression;
+        }
     }
   }
 }
@@ -150,11 +172,13 @@ std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecover
   r->stations = d.beam_stations;
   r->section_has_strength.assign(static_cast<std::size_t>(ns), 0);
   r->section_tsai_wu.resize(static_cast<std::size_t>(ns));
+  r->section_strength.resize(static_cast<std::size_t>(ns));
   for (long k = 0; k < ns; ++k) {
     const Strength5 st = s.strength.row(k).transpose();
     if ((st.array() > 0).all()) {
       r->section_has_strength[static_cast<std::size_t>(k)] = 1;
       r->section_tsai_wu[static_cast<std::size_t>(k)] = tsaiWuCoefficients(st);
+      r->section_strength[static_cast<std::size_t>(k)] = plyStrength(st);
     } else if (s.has_plies[static_cast<std::size_t>(k)]) {
       throw std::invalid_argument(file + ": the beam's section material '" + s.material[static_cast<std::size_t>(k)] +
                                   "' has no strengths: outputs.stresses needs them for the Tsai-Wu index of its plies; "
@@ -166,6 +190,8 @@ std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecover
   r->outputs.push_back({"ply_stress", {n_st, ns, 3}});
   r->failure_output = static_cast<int>(r->outputs.size());
   r->outputs.push_back({"failure_index", {n_st, ns}});
+  r->hashin_output = static_cast<int>(r->outputs.size());
+  r->outputs.push_back({"hashin", {n_st, ns, 4}});
   return r;
 }
 

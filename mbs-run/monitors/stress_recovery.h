@@ -12,6 +12,8 @@
 //   eps_12 = T(theta) eps(z)     to the ply's material axes (engineering shear)
 //   sigma_12 = Q eps_12          the ply's reduced stiffness
 //   F = Tsai-Wu(sigma_12)        contracts.md's formula, failure at 1
+//   H = Hashin(sigma_12)         four mode indices, plane-stress form
+//                                (common/failure_criteria.h), beside F
 // A body's recovery is a BodyStressRecovery: its datasets and one recover()
 // that dispatches on the kind of body, so that another kind (beams' section
 // forces) joins by adding its data, its outputs and its branch.
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/failure_criteria.h"
 #include "common/stress_data.h"
 
 namespace fc::mbs {
@@ -46,6 +49,7 @@ struct TsaiWu {
   double F1 = 0, F2 = 0, F11 = 0, F22 = 0, F66 = 0, F12 = 0;
 };
 TsaiWu tsaiWuCoefficients(const Strength5& strength);
+PlyStrength plyStrength(const Strength5& strength);
 // F1 s1 + F2 s2 + F11 s1^2 + F22 s2^2 + F66 t12^2 + 2 F12 s1 s2 of
 // sigma = [s1, s2, t12] in material axes; failure at 1.
 double tsaiWuIndex(const TsaiWu& c, const Eigen::Vector3d& sigma);
@@ -74,6 +78,7 @@ struct BodyStressRecovery {
   long n_elements = 0;
   std::vector<StressOutput> outputs;  // in the order recover() fills them
   int failure_output = -1;            // index into outputs of the failure index, -1 if none
+  int hashin_output = -1;             // index into outputs of the Hashin indices (.., 4), -1 if none
   long n_plies = 0;                   // shells
 
   // Shells: (6 n_el, n_modes) strains per unit modal coordinate, the ply
@@ -81,6 +86,7 @@ struct BodyStressRecovery {
   Eigen::MatrixXd shell_strains;
   Eigen::MatrixXd ply_operator;
   std::vector<TsaiWu> tsai_wu;
+  std::vector<PlyStrength> ply_strength;     // (n_plies) with tsai_wu, for Hashin
 
   // Beams: (6 n_el, n_modes) midpoint section resultants per unit modal coordinate.
   Eigen::MatrixXd beam_resultants;
@@ -93,6 +99,7 @@ struct BodyStressRecovery {
   Eigen::MatrixXd stations;                  // (3 n_el, 3) body frame, written as /bodies/NAME/stations
   std::vector<char> section_has_strength;    // (n_se)
   std::vector<TsaiWu> section_tsai_wu;       // (n_se), unused where no strength
+  std::vector<PlyStrength> section_strength; // (n_se), unused where no strength
   // The output holding the stresses that go with the failure index (the
   // envelope's *_at_peak): 0 for shells, the beam's ply_stress otherwise.
   int ply_output = 0;

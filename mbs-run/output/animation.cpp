@@ -165,7 +165,8 @@ void writeBodyFrame(const std::string& path, const Shape& s, const Eigen::Vector
   VtpWriter v;
   v.add("PointData", "displacement", "Float64", 3, u);
   // Bodies with stress recovery: the largest Tsai-Wu index over the plies of
-  // each element (cells in /mesh/triangles order, which is the polygons' order).
+  // each element (cells in /mesh/triangles order, which is the polygons'
+  // order), or of each beam element over its stations and section elements.
   if (failure) v.add("CellData", "failure_index", "Float64", 1, std::vector<double>(failure->data(), failure->data() + failure->size()));
   v.add("Points", "Points", "Float64", 3, x);
   v.add("Lines", "connectivity", "Int64", 1, lc);
@@ -251,6 +252,22 @@ AnimationSummary writeAnimation(const std::string& pvd_path, const std::string& 
         throw std::runtime_error(results_path + ": " + g + "failure_index does not match the body's elements and plies");
       const std::vector<double> fi = f.readArray(g + "failure_index");
       tr.failure = Eigen::Map<const Eigen::MatrixXd>(fi.data(), np, ne * ts.size()).colwise().maxCoeff();
+      tr.failure.resize(ne, ts.size());
+    }
+    // Beams with ply recovery: per beam element the largest index over its
+    // three stations and every section element (cells in /mesh/beams order,
+    // which is the lines' order; a beam body draws no polygons).
+    if (b.stress && b.stress->kind == BodyStressRecovery::Kind::Beam && b.stress->failure_output >= 0 &&
+        f.exists(g + "failure_index")) {
+      const std::vector<hsize_t> sh = f.shape(g + "failure_index");
+      const long ne = b.stress->n_elements, ns = b.stress->n_plies;
+      const Shape& shape = shapes[tracks.size()];
+      if (sh.size() != 3 || sh[0] != static_cast<hsize_t>(ts.size()) || sh[1] != static_cast<hsize_t>(3 * ne) ||
+          sh[2] != static_cast<hsize_t>(ns) || ne != static_cast<long>(shape.lines.size()) || !shape.polys.empty())
+        throw std::runtime_error(results_path + ": " + g +
+                                 "failure_index does not match the beam's stations and section elements");
+      const std::vector<double> fi = f.readArray(g + "failure_index");
+      tr.failure = Eigen::Map<const Eigen::MatrixXd>(fi.data(), 3 * ns, ne * ts.size()).colwise().maxCoeff();
       tr.failure.resize(ne, ts.size());
     }
     tracks.push_back(std::move(tr));

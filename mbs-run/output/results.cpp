@@ -389,6 +389,25 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
                    model.bodies[static_cast<std::size_t>(model.margin_beams[static_cast<std::size_t>(worst)].body)].name);
   }
   {
+    // Each body's peak failure index with where and when (the per-member
+    // table of a deployment; beams: element = station, ply = section element).
+    std::vector<const RunSummary::FailurePeak*> peaks;
+    for (const auto& p : r.body_failure_peaks)
+      if (p.found) peaks.push_back(&p);
+    if (!peaks.empty()) {
+      Eigen::MatrixXd t(Eigen::Index(peaks.size()), 4);
+      std::string list;
+      for (std::size_t k = 0; k < peaks.size(); ++k) {
+        t.row(Eigen::Index(k)) << peaks[k]->value, peaks[k]->time, double(peaks[k]->element), double(peaks[k]->ply);
+        list += (list.empty() ? "" : " ") + peaks[k]->body;
+      }
+      f.writeMatrix("/margins/failure_index", t);
+      f.setAttribute("/margins/failure_index", "bodies", list);
+      f.setAttribute("/margins/failure_index", "columns",
+                     std::string("peak Tsai-Wu index, time [s], element (beams: station), ply (beams: section element); 0-based"));
+    }
+  }
+  {
     Eigen::MatrixXd l(mg.latches.size(), 3);
     std::vector<std::string> names;
     for (std::size_t k = 0; k < mg.latches.size(); ++k) {

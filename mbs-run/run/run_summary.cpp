@@ -56,6 +56,9 @@ void RunSummary::observe(const Model& m, const Sample& s) {
     const FailureLocation at = largestFailureIndex(*r, s.bodies[k].stress[static_cast<std::size_t>(r->failure_output)]);
     if (at.element >= 0 && (!peak_failure_index.found || at.value > peak_failure_index.value))
       peak_failure_index = {true, at.value, s.time, m.bodies[k].name, at.element, at.ply};
+    if (body_failure_peaks.size() != s.bodies.size()) body_failure_peaks.resize(s.bodies.size());
+    FailurePeak& bp = body_failure_peaks[k];
+    if (at.element >= 0 && (!bp.found || at.value > bp.value)) bp = {true, at.value, s.time, m.bodies[k].name, at.element, at.ply};
   }
   for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
     const auto& r = m.bodies[k].stress;

@@ -60,6 +60,10 @@ struct RunSummary {
     long element = -1, ply = -1;
   };
   FailurePeak peak_failure_index;
+  // The same per body (found = false for bodies without a failure index): each
+  // member's peak over the run, the margins table /margins/failure_index. For
+  // beams, element is the station and ply the section element.
+  std::vector<FailurePeak> body_failure_peaks;
   // Largest bending moment |(M2, M3)| over the beam bodies with section
   // forces (outputs.stresses), their elements (0-based) and output rows.
   struct SectionMomentPeak {

@@ -102,7 +102,7 @@ TEST(StressKernels, RecoveryOfTwoPliesByHand) {
   EXPECT_DOUBLE_EQ(d.plies.z_mid(0), -0.0005);
   EXPECT_DOUBLE_EQ(d.plies.z_mid(1), 0.0005);
   const auto r = shellStressRecovery(d);
-  ASSERT_EQ(r->outputs.size(), 2u);
+  ASSERT_EQ(r->outputs.size(), 3u);  // ply_stress, failure_index, hashin
   const Eigen::Vector2d q(0.7, -1.9);
   std::vector<Eigen::VectorXd> f;
   r->recover(q, f);
@@ -121,6 +121,21 @@ TEST(StressKernels, RecoveryOfTwoPliesByHand) {
   const TsaiWu c = tsaiWuCoefficients(d.plies.strength.row(0).transpose());
   EXPECT_NEAR(f[1](0), tsaiWuIndex(c, s0), 1e-14);
   EXPECT_NEAR(f[1](1), tsaiWuIndex(c, s1), 1e-14);
+  // Hashin's plane-stress form written out (S_T = Yc / 2, S_A = S12) for each ply.
+  const Eigen::VectorXd st = d.plies.strength.row(0).transpose();
+  const double Xt = st(0), Xc = st(1), Yt = st(2), Yc = st(3), S = st(4), ST = Yc / 2;
+  ASSERT_EQ(f[2].size(), 8);
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d& sk = k == 0 ? s0 : s1;
+    const double axial = sk(2) * sk(2) / (S * S);
+    const double ft = sk(0) >= 0 ? sk(0) * sk(0) / (Xt * Xt) + axial : 0.0;
+    const double fc = sk(0) < 0 ? sk(0) * sk(0) / (Xc * Xc) : 0.0;
+    const double mt = sk(1) >= 0 ? sk(1) * sk(1) / (Yt * Yt) + axial : 0.0;
+    const double mc = sk(1) < 0 ? ((Yc / (2 * ST)) * (Yc / (2 * ST)) - 1) * sk(1) / Yc + sk(1) * sk(1) / (4 * ST * ST) + axial : 0.0;
+    const double want[4] = {ft, fc, mt, mc};
+    // The 1e-6 Pa of the stresses above, relative to strengths of 1e7..1e9 Pa.
+    for (int m = 0; m < 4; ++m) EXPECT_NEAR(f[2](4 * k + m), want[m], 1e-12) << k << " " << m;
+  }
   const FailureLocation at = largestFailureIndex(*r, f[1]);
   EXPECT_EQ(at.element, 0);
   EXPECT_EQ(at.ply, f[1](1) > f[1](0) ? 1 : 0);
@@ -423,7 +438,31 @@ TEST(StressEnvelope, IsTheMaxOverEveryFullRowAndItsTime) {
   EXPECT_GT(rows_differ, 0);
   // The summary's largest index is the envelope's largest.
   EXPECT_EQ(f.doubleAttribute("/", "peak_failure_index"), largest);
+  // The per-member table: one row for p (w has no strengths, b no section
+  // basis), its peak, the first time it is reached, its element and ply.
+  {
+    const Eigen::MatrixXd mt = f.readMatrix("/margins/failure_index");
+    ASSERT_EQ(mt.rows(), 1);
+    ASSERT_EQ(mt.cols(), 4);
+    EXPECT_EQ(f.stringAttribute("/margins/failure_index", "bodies"), "p");
+    EXPECT_EQ(mt(0, 0), largest);
+    int at = 0;
+    for (int i = 1; i < 12; ++i)
+      if (peak[i] > peak[at]) at = i;
+    EXPECT_EQ(mt(0, 1), when[at]);
+    EXPECT_EQ(mt(0, 2), at / 3);
+    EXPECT_EQ(mt(0, 3), at % 3);
+  }
   EXPECT_FALSE(f.exists("/bodies/p/ply_stress_max"));
+  // Each Hashin mode's peak is the largest of its rows.
+  ASSERT_EQ(f.shape("/bodies/p/hashin"), (std::vector<hsize_t>{11, 4, 3, 4}));
+  ASSERT_EQ(f.shape("/bodies/p/hashin_peak"), (std::vector<hsize_t>{4, 3, 4}));
+  const std::vector<double> hs = f.readArray("/bodies/p/hashin"), hp = f.readArray("/bodies/p/hashin_peak");
+  for (int i = 0; i < 48; ++i) {
+    double mx = hs[i];
+    for (long k = 1; k < n; ++k) mx = std::max(mx, hs[k * 48 + i]);
+    EXPECT_EQ(hp[i], mx) << i;
+  }
   // w (no strengths): min and max of each ply stress component; b: of each section force.
   for (const std::string& field : {std::string("/bodies/w/ply_stress"), std::string("/bodies/b/section_forces")}) {
     const std::vector<double> v = f.readArray(field), hi = f.readArray(field + "_max"), lo = f.readArray(field + "_min");

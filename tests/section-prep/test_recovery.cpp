@@ -262,7 +262,7 @@ TEST(Recovery, FailureIndicesByHand) {
   const double F1 = 1 / Xt - 1 / Xc, F2 = 1 / Yt - 1 / Yc, F11 = 1 / (Xt * Xc), F22 = 1 / (Yt * Yc),
                F66 = 1 / (S * S), F12 = -0.5 * std::sqrt(F11 * F22);
   int with = 0;
-  double largest = 0;
+  double largest = 0, largest_hashin = 0;
   for (std::size_t e = 0; e < rec.size(); ++e) {
     const RecoveredElement& r = rec[e];
     // Linear in the resultants: the combination of the basis columns.
@@ -291,11 +291,31 @@ TEST(Recovery, FailureIndicesByHand) {
     EXPECT_NEAR(s1, Tm(0, 0), 1e-9 * T.norm());
     EXPECT_NEAR(s2, Tm(1, 1), 1e-9 * T.norm());
     EXPECT_NEAR(t12, Tm(0, 1), 1e-9 * T.norm());
+    // Hashin's 3D criteria (J. Appl. Mech. 47 (1980) 329) written out from the
+    // full tensor in material axes, S_T = Yc / 2, S_A = S12.
+    {
+      const double a11 = Tm(0, 0), a22 = Tm(1, 1), a33 = Tm(2, 2), a23 = Tm(1, 2), a13 = Tm(0, 2), a12 = Tm(0, 1);
+      const double ST = Yc / 2, I2 = a22 + a33;
+      const double axial = (a12 * a12 + a13 * a13) / (S * S), trans = (a23 * a23 - a22 * a33) / (ST * ST);
+      const double ft = a11 >= 0 ? (a11 / Xt) * (a11 / Xt) + axial : 0.0;
+      const double fc = a11 < 0 ? (a11 / Xc) * (a11 / Xc) : 0.0;
+      const double mt = I2 >= 0 ? (I2 / Yt) * (I2 / Yt) + trans + axial : 0.0;
+      const double mc = I2 < 0 ? ((Yc / (2 * ST)) * (Yc / (2 * ST)) - 1) * I2 / Yc + I2 * I2 / (4 * ST * ST) + trans + axial
+                               : 0.0;
+      // The tensor rotation's rounding (1e-9 of |T| above) squared into an index of O(0.1).
+      const double tol = 1e-8 * std::max(1.0, r.hashin.max());
+      EXPECT_NEAR(r.hashin.fibre_tension, ft, tol);
+      EXPECT_NEAR(r.hashin.fibre_compression, fc, tol);
+      EXPECT_NEAR(r.hashin.matrix_tension, mt, tol);
+      EXPECT_NEAR(r.hashin.matrix_compression, mc, tol);
+      largest_hashin = std::max(largest_hashin, r.hashin.max());
+    }
     largest = std::max(largest, tw);
   }
   EXPECT_GT(with, 0);
   // The loads are sized to load the plies well: the index is not trivially small.
   EXPECT_GT(largest, 1e-2);
+  EXPECT_GT(largest_hashin, 1e-2);
 
   // The file layout of contracts.md: /recovery/stress (6, n_el, 6), ply_stress
   // (6, n_el, 3), /mesh/centroids (n_el, 2); and the --recover datasets.
@@ -310,6 +330,9 @@ TEST(Recovery, FailureIndicesByHand) {
   const std::vector<double> ply_file = f.readArray("/recovery/ply_stress");
   const Eigen::MatrixXd c = f.readMatrix("/mesh/centroids");
   const Eigen::MatrixXd tw = f.readMatrix("/recovered/failure_index");
+  const Eigen::MatrixXd hs = f.readMatrix("/recovered/hashin");
+  ASSERT_EQ(hs.rows(), ne);
+  ASSERT_EQ(hs.cols(), 4);
   for (long e = 0; e < ne; e += 7) {
     for (int r = 0; r < 6; ++r)
       for (int k = 0; k < 6; ++k) EXPECT_EQ(st_file[(r * ne + e) * 6 + k], p.recovery[e].stress(k, r));
@@ -319,6 +342,8 @@ TEST(Recovery, FailureIndicesByHand) {
     EXPECT_LT((sum - rec[e].ply_stress).norm(), 1e-9 * rec[e].ply_stress.norm() + 1e-6);
     EXPECT_EQ(c(e, 0), p.recovery[e].centroid.x());
     EXPECT_EQ(tw(e, 0), rec[e].tsai_wu);
+    EXPECT_EQ(hs(e, 0), rec[e].hashin.fibre_tension);
+    EXPECT_EQ(hs(e, 3), rec[e].hashin.matrix_compression);
   }
 }
 
