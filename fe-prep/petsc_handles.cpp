@@ -27,15 +27,21 @@ std::string takePetscOutOfMemory() {
 
 PetscErrorCode recordingErrorHandler(MPI_Comm, int, const char* fun, const char*, PetscErrorCode n, PetscErrorType p,
                                      const char* mess, void*) {
-  if (n == PETSC_ERR_MEM && p == PETSC_ERROR_INITIAL) {
+  // PETSc 3.18 (Debian) does not always pass PETSC_ERR_MEM on: under ulimit -v
+  // the code came up as aij.c's line number. A frame of the allocator itself in
+  // the error's chain means an allocation failed.
+  const bool allocator = fun && (std::strncmp(fun, "PetscMalloc", 11) == 0 || std::strncmp(fun, "PetscCalloc", 11) == 0 ||
+                                 std::strncmp(fun, "PetscTrMalloc", 13) == 0);
+  if ((n == PETSC_ERR_MEM || allocator) && !g_petsc_oom) {
     g_petsc_oom = true;
     g_petsc_oom_size.clear();
     g_petsc_oom_where.clear();
     // PetscMallocAlign's message: "Memory requested N" (bytes).
     const char* at = mess ? std::strstr(mess, "requested") : nullptr;
     if (at) g_petsc_oom_size = formatMegabytes(std::atof(at + 9) / 1048576.0);
-  } else if (g_petsc_oom && g_petsc_oom_where.empty() && fun && std::strncmp(fun, "PetscMalloc", 11) != 0 &&
-             std::strncmp(fun, "PetscCalloc", 11) != 0 && std::strncmp(fun, "PetscTrMalloc", 13) != 0) {
+  } else if (g_petsc_oom && g_petsc_oom_size.empty() && allocator && mess && std::strstr(mess, "requested")) {
+    g_petsc_oom_size = formatMegabytes(std::atof(std::strstr(mess, "requested") + 9) / 1048576.0);
+  } else if (g_petsc_oom && g_petsc_oom_where.empty() && fun && !allocator) {
     g_petsc_oom_where = fun;  // the first caller that is not the allocator itself
   }
   return n;
