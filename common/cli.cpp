@@ -7,6 +7,7 @@
 #include "common/h5io.h"
 #include "common/input.h"
 #include "common/inspect.h"
+#include "common/memory.h"
 
 namespace fc {
 
@@ -19,9 +20,9 @@ int guardedMain(const std::string& tool, const std::function<int()>& body) {
   } catch (const H5Error& e) {
     std::cerr << tool << ": error: " << e.what() << "\n";
     return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << tool << ": error: out of memory (the problem is too large for this machine; "
-                 "a coarser mesh or fewer modes needs less)\n";
+  } catch (const std::bad_alloc& e) {
+    // Before anything else: a message that needs no more than a few kB.
+    std::cerr << tool << ": error: " << outOfMemoryMessage(e, tool) << "\n";
     return 1;
   } catch (...) {
     // Anything else (std::exception, gmsh's std::string...) is one line, never an abort.

@@ -13,6 +13,15 @@
 namespace fc {
 
 void checkGmshInput(const std::string& path);
+
+// An ASCII .msh file (MSH 2.2 or 4.x) read before gmsh sees it: a section
+// without its end, a count that does not match the lines that follow, a node
+// or element number given twice, an element naming a node that does not
+// exist, a non-finite coordinate are InputErrors at their line. gmsh 4.8
+// reads past such files: an element line given twice made it drop the last
+// element without a word (its count was reached), a missing $Nodes header
+// line crashed it ("double free or corruption"). Binary files are left to gmsh.
+void checkMshStructure(const std::string& path);
 // The refused .geo commands (for documentation and tests).
 const std::vector<std::string>& refusedGeoCommands();
 

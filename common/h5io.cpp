@@ -13,6 +13,7 @@
 
 #include "common/dataset_docs.h"
 #include "common/files.h"
+#include "common/memory.h"
 #include "common/termination.h"
 #include "common/version.h"
 
@@ -117,7 +118,11 @@ void writeRaw(hid_t file, const std::string& fname, const std::string& path, hid
 
 }  // namespace
 
+// HDF5's metadata cache on opening a file: 1.10 does not check that allocation.
+constexpr std::size_t kHdf5OpenHeadroom = 16u << 20;
+
 H5File::H5File(const std::string& path, Mode mode) : path_(path) {
+  requireHeadroom(kHdf5OpenHeadroom, "opening " + path + " (HDF5)");
   if (mode == Mode::Read) {
     recordInputFile(path);
     id_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -727,6 +732,7 @@ void checkAllFinite(const H5File& f) {
 }
 
 AtomicH5Writer::AtomicH5Writer(const std::string& final_path) : final_path_(final_path) {
+  requireHeadroom(kHdf5OpenHeadroom, "creating " + final_path + " (HDF5)");
   for (int attempt = 0;; ++attempt) {
     tmp_path_ = temporaryNameFor(final_path);
     const hid_t id = H5Fcreate(tmp_path_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);

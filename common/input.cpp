@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/files.h"
+#include "common/memory.h"
 
 namespace fc {
 
@@ -158,7 +159,8 @@ InputNode InputNode::loadString(const std::string& text, const std::string& name
     throw InputError(name, e.mark.line + 1, e.mark.column + 1, "",
                      "invalid YAML: " + e.msg);
   } catch (const std::bad_alloc&) {
-    throw InputError(name, 0, 0, "", "out of memory while parsing the file (is it YAML?)");
+    // Out of memory is no input error: exit 1 with the stage (common/memory.h).
+    throw OutOfMemory("parsing " + name + " (" + std::to_string(text.size()) + " bytes of YAML)");
   }
   validateTree(root, name);
   InputNode top(root, file, "");

@@ -13,7 +13,8 @@ Progress::Progress(std::string label, double total, bool quiet)
       quiet_(quiet || std::getenv("FLEXCOMP_QUIET") != nullptr),
       tty_(isatty(fileno(stderr)) != 0),
       start_(std::chrono::steady_clock::now()),
-      last_draw_(start_) {}
+      last_draw_(start_),
+      stage_(label_) {}
 
 Progress::~Progress() {
   if (!finished_ && !quiet_ && tty_ && last_decile_ >= 0) std::fputc('\n', stderr);
@@ -44,6 +45,7 @@ void Progress::update(double done, const std::string& detail) {
 }
 
 void Progress::finish(const std::string& detail) {
+  stage_.end();
   if (quiet_ || finished_) return;
   finished_ = true;
   const double elapsed =

@@ -1,5 +1,7 @@
 #include "common/termination.h"
 
+#include "common/memory.h"
+
 #include <signal.h>
 #include <time.h>
 #include <unistd.h>
@@ -92,16 +94,31 @@ extern "C" void onTerminationSignal(int sig) {
 
 std::string g_fatal_context;
 
+// Out of memory where no catch reaches (gmsh's OpenMP meshing loop): said as
+// such, with the stage, exit 1; it is no input error, so no input location.
+bool outOfMemoryNow() {
+  const std::exception_ptr p = std::current_exception();
+  if (!p) return false;
+  try {
+    std::rethrow_exception(p);
+  } catch (const std::bad_alloc&) {
+    return true;
+  } catch (...) {
+    return false;
+  }
+}
+
 [[noreturn]] void onTerminate() {
   const std::string msg = currentExceptionMessage();
+  const bool oom = outOfMemoryNow();
   for (auto& slot : g_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
   writeAll(g_prefix);
   writeAll(": error: ");
-  writeAll(g_fatal_context.c_str());
+  if (!oom) writeAll(g_fatal_context.c_str());
   writeAll(msg.c_str());
   writeAll("\n");
-  ::_exit(g_fatal_context.empty() ? 1 : 2);
+  ::_exit(g_fatal_context.empty() || oom ? 1 : 2);
 }
 
 }  // namespace
@@ -194,8 +211,8 @@ std::string currentExceptionMessage() {
   if (!p) return "internal error (std::terminate without an exception)";
   try {
     std::rethrow_exception(p);
-  } catch (const std::bad_alloc&) {
-    return "out of memory";
+  } catch (const std::bad_alloc& e) {
+    return outOfMemoryMessage(e, g_prefix);
   } catch (const std::exception& e) {
     return e.what();
   } catch (const std::string& s) {

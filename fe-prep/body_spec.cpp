@@ -146,6 +146,8 @@ void parseBeamSection(const InputNode& sec, const MaterialLibrary& materials, Bo
       if (!(Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
       // The section's stresses per unit resultant (its /recovery/), for ply stresses at stations.
       if (basis) *basis = readSectionStressBasis(path);
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory is no input error
     } catch (const std::exception& e) {
       sec["file"].fail(std::string("cannot use section file: ") + e.what() +
                        "; expected a section-prep output (format section/1)");

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/memory.h"
 #include "common/progress.h"
 #include "fe-prep/assembly.h"
 #include "fe-prep/beam_mesher.h"
@@ -340,6 +341,7 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
   MPI_Comm_rank(comm, &rank);
   Mesh mesh;
   std::string error;
+  int out_of_memory = 0;
   if (rank == 0) {
     try {
       if (spec.general) {
@@ -378,15 +380,24 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
         for (const auto& i : spec.interfaces) pts.push_back(i.position);
         mesh = meshGeoFile(spec.shell->geo_file, spec.shell->size, pts, true, spec.shell->max_triangles);
       }
+    } catch (const std::bad_alloc& e) {
+      // Said as what it is on every rank, not as a mesh error (common/memory.h).
+      const std::size_t asked = lastFailedAllocation();
+      error = dynamic_cast<const OutOfMemory*>(&e) ? std::string(e.what())
+              : asked ? "the mesh's allocation of " + formatMegabytes(static_cast<double>(asked) / 1048576.0) + " failed"
+                      : std::string("the mesher's allocation failed");
+      out_of_memory = 1;
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
+  MPI_Bcast(&out_of_memory, 1, MPI_INT, 0, comm);
   long len = static_cast<long>(error.size());
   MPI_Bcast(&len, 1, MPI_LONG, 0, comm);
   error.resize(static_cast<std::size_t>(len));
   MPI_Bcast(error.data(), static_cast<int>(len), MPI_CHAR, 0, comm);
   if (!error.empty()) {
+    if (out_of_memory) throw OutOfMemory(error);
     if (spec.general) spec.general->file_node.fail(error);
     if (spec.shell) spec.shell->mesh_node.fail("meshing failed: " + error);
     throw std::runtime_error("meshing failed: " + error);
@@ -598,6 +609,11 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
 
   // --- eigen-solve
   sw.start();
+  Progress peig("eigen-solve", 1.0, quiet);
+  // MUMPS's estimate of the factorisation of K (static responses, eigen-solve),
+  // before the first one starts; refused when over what is left.
+  const std::string factorisation = checkFactorisationMemory(sys.K, "the stiffness");
+  if (!factorisation.empty()) peig.update(0.0, factorisation);
   // Static deflection of every interface under unit loads (static_response.h):
   // the yardstick of the modes' truncation. Where the reference holds the body,
   // always; where rigid motions are left free, with inertia relief (the
@@ -647,13 +663,12 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   req.modes = spec.static_error > 0 ? 8 : solved;
   req.max_frequency_hz = spec.max_frequency_hz;
   req.tolerance = options.tolerance;
-  Progress peig("eigen-solve", 1.0, quiet);
   ModalResult modal;
   for (;;) {
     bool solver_limit = false;  // static_error: a doubled count the eigen-solver could not deliver
     try {
       modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
-        peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes");
+        peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes" + (factorisation.empty() ? "" : "; " + factorisation));
       });
     } catch (const ModeCountError& e) {
       if (spec.static_error <= 0 || modal.eigenvalues.size() == 0) spec.modes_node.fail(e.what());

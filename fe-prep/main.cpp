@@ -3,16 +3,20 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <iostream>
 
 #include "common/cli.h"
 #include "common/files.h"
 #include "common/input.h"
+#include "common/memory.h"
 #include "common/flexbody.h"
 #include "common/termination.h"
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
+#include "fe-prep/petsc_handles.h"
 #include "fe-prep/xdmf_writer.h"
 
 namespace {
@@ -68,18 +72,27 @@ int main(int argc, char** argv) {
   // After PETSc, which installs its own handlers: a termination signal removes
   // the temporary being written and exits, on every rank. No partial output.
   fc::installTerminationHandlers("fe-prep", fc::TerminationPolicy::ExitNow);
+  // PETSc's errors come back as codes, each said once as a sentence by
+  // fe-prep's checks (an allocation failure as out of memory, with the stage),
+  // not as PETSc's multi-line trace; FLEXCOMP_PETSC_TRACE=1 keeps the trace.
+  if (!std::getenv("FLEXCOMP_PETSC_TRACE")) PetscPushErrorHandler(fc::feprep::recordingErrorHandler, nullptr);
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   auto run = [&] {
     // Refuse a bad output path before any computing, not after.
     fc::checkOutputIsNotAnInput(output, {input});
     if (rank == 0) fc::checkOutputWritable(output);
+    // Each stage is named for an out-of-memory message (common/memory.h);
+    // buildFlexBody's progress bars name its own (meshing, assembly, eigen-solve).
+    std::optional<fc::StageScope> stage(std::in_place, "reading the input");
     const fc::feprep::BodySpec spec = fc::feprep::readBodySpec(input);
     fc::checkOutputIsNotAnInput(output, spec.input_files);
     fc::checkOutputIsNotAnInput(output, fc::inputFilesRead());
     fc::feprep::BuildOptions opt;
     opt.quiet = quiet;
+    stage.emplace("building the body");
     const fc::feprep::BuildResult r = fc::feprep::buildFlexBody(PETSC_COMM_WORLD, spec, opt);
+    stage.emplace("writing " + output);
     if (rank == 0) {
       fc::Provenance prov;
       prov.inputs_sha256 = fc::sha256Files(spec.input_files);

@@ -124,13 +124,15 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     check(EPSSetFromOptions(eps), "EPSSetFromOptions");
     {
       // A failure here is reported once, as a sentence, not as PETSc's trace.
-      check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+      check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
       const PetscErrorCode ierr = EPSSolve(eps);
       PetscPopErrorHandler();
       if (ierr) {
+        // Out of memory in MUMPS or PETSc is said as such, not as a mode count.
+        throwIfOutOfMemory(pc, ierr, "K - sigma M");
         // A failed solve can leave SLEPc's work matrices checked out: release
         // the solver now, quietly, so that its clean-up does not print a trace.
-        check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+        check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
         EPSDestroy(&eps.h);
         PetscPopErrorHandler();
         eps.h = nullptr;

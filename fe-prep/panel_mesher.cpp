@@ -82,6 +82,8 @@ auto withGmsh(const std::string& what, F f) -> decltype(f()) {
     return f();
   } catch (const InputError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is no input error (common/memory.h)
   } catch (...) {
     throw std::runtime_error(what + ": gmsh: " + currentExceptionMessage());
   }

@@ -8,11 +8,35 @@
 
 #include <Eigen/Dense>
 #include <memory>
+#include <string>
 
 namespace fc::feprep {
 
-// Throws std::runtime_error "PETSc error in WHAT (code N)" for a non-zero code.
+// Throws std::runtime_error "PETSc error in WHAT (code N)" for a non-zero code;
+// PETSc's allocation failure (PETSC_ERR_MEM) is fc::OutOfMemory (common/memory.h).
 void check(PetscErrorCode ierr, const char* what);
+
+// PETSc's error handler in fe-prep: returns the code as PetscReturnErrorHandler
+// does (no trace printed; fe-prep's checks say what failed) and remembers an
+// allocation failure (PETSC_ERR_MEM, with the size PETSc asked for and the
+// function that asked), which check() then reports as fc::OutOfMemory. PETSc
+// 3.18 does not always hand PETSC_ERR_MEM back up the call chain: the handler
+// sees it where it starts.
+PetscErrorCode recordingErrorHandler(MPI_Comm comm, int line, const char* fun, const char* file, PetscErrorCode n,
+                                     PetscErrorType p, const char* mess, void* ctx);
+
+// MUMPS's estimate of the memory a Cholesky factorisation of A needs, from its
+// analysis alone (INFOG(16): the largest rank, INFOG(17): all ranks, MB; -1 if
+// MUMPS gave none), in one line for the progress bar: "factorisation ~830 MB
+// (MUMPS estimate; 11.2 GB available)". Throws fc::OutOfMemory before the
+// factorisation starts when the estimate exceeds what is left (MemAvailable,
+// the address-space limit).
+std::string checkFactorisationMemory(Mat A, const std::string& what);
+
+// After a failed solve through PC: when MUMPS ran out of memory (its
+// factorisation error, INFOG(1) = -8, -9, -13 ...) or PETSc did (ierr is
+// PETSC_ERR_MEM), throws fc::OutOfMemory with MUMPS's figures; otherwise returns.
+void throwIfOutOfMemory(PC pc, PetscErrorCode ierr, const std::string& what);
 
 // Owns a PETSc/SLEPc object: `&h` passes it to a Create call, `h` converts to
 // the raw handle; the Destroy function runs once, on destruction or reassignment.

@@ -33,7 +33,12 @@ Eigen::MatrixXd solveReduced(MPI_Comm comm, Mat K, const Eigen::MatrixXd& rhs, c
     check(KSPSolve(ksp, b, x), "KSPSolve");
     KSPConvergedReason why;
     check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-    if (why < 0) throw std::runtime_error(singular);
+    if (why < 0) {
+      PC pc;
+      check(KSPGetPC(ksp, &pc), "KSPGetPC");
+      throwIfOutOfMemory(pc, 0, "the stiffness");
+      throw std::runtime_error(singular);
+    }
     out.col(j) = gatherAll(x);
   }
   return out;

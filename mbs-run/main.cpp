@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "common/cli.h"
 #include "common/files.h"
+#include "common/memory.h"
 #include "common/termination.h"
 #include "common/version.h"
 #include "mbs-run/output/animation.h"
@@ -237,6 +239,8 @@ int main(int argc, char** argv) {
     // recorded: the loop stops at the next step and the file is finished with
     // status "interrupted by SIGxxx"; a second one exits at once.
     fc::installTerminationHandlers("mbs-run", fc::TerminationPolicy::Record);
+    // Each stage is named for an out-of-memory message (common/memory.h).
+    std::optional<fc::StageScope> stage(std::in_place, "reading the scene");
     fc::mbs::Model model = fc::mbs::loadScene(input);
     if (t_end > 0) model.settings.t_end = t_end;
     if (rtol > 0) model.settings.rtol = rtol;
@@ -265,6 +269,7 @@ int main(int argc, char** argv) {
     for (const std::string& w : fc::mbs::samplingWarnings(model))
       if (!seen.count(w)) std::fprintf(stderr, "mbs-run: warning: %s\n", w.c_str());
     const long expected_rows = static_cast<long>(model.settings.t_end / model.settings.output_step) + 2;
+    stage.emplace("integration");
     fc::mbs::ResultsFileWriter file(output, model, expected_rows);
     std::unique_ptr<fc::mbs::CsvWriter> table;
     if (!csv.empty()) table = std::make_unique<fc::mbs::CsvWriter>(csv, model, chosen);
@@ -272,11 +277,13 @@ int main(int argc, char** argv) {
     fc::mbs::RunOptions opt;
     opt.quiet = quiet;
     const fc::mbs::RunSummary r = fc::mbs::simulate(model, opt, sinks);
+    stage.emplace("writing " + output);
     file.finish(model, r, fc::sha256File(input));
     if (table) table->finish();
     printSummary(model, r, output, seen);
     addSeenWarnings(seen_warnings, seen, r.warnings);
     if (!animation.empty()) {
+      stage.emplace("writing the animation " + animation);
       const fc::mbs::AnimationSummary a = fc::mbs::writeAnimation(animation, input, model, output, animation_every);
       std::printf("  animation %s: %d frames of %d bodies (files in %s)\n", animation.c_str(), a.frames, a.bodies,
                   a.folder.c_str());

@@ -11,6 +11,7 @@
 #include "common/cli.h"
 #include "common/files.h"
 #include "common/input.h"
+#include "common/memory.h"
 #include "common/progress.h"
 #include "common/termination.h"
 #include "common/version.h"
@@ -60,6 +61,8 @@ int main(int argc, char** argv) {
     SectionMesh mesh;
     AnalysisOptions opt;
     std::vector<std::string> inputs{input};
+    // Each stage is named for an out-of-memory message (common/memory.h).
+    std::optional<fc::StageScope> stage(std::in_place, "reading the input");
     if (isYaml(input)) {
       const fc::InputNode root = fc::InputNode::loadFile(input);
       const SectionSpec spec = readSectionSpec(root);
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
       // Errors are located at the key that chose the geometry: the mesh file or the section.
       const fc::InputNode sec = root["section"];
       const fc::InputNode where = sec.has("file") ? sec["file"] : sec;
+      stage.emplace("meshing");
       try {
         // gmsh may throw inside its OpenMP meshing loop, where no catch reaches:
         // the terminate handler then reports it with this location.
@@ -81,6 +85,8 @@ int main(int argc, char** argv) {
         // kind, unreadable): at the key that named it.
         if (e.line() > 0) throw;
         where.fail(std::string("cannot mesh this section: ") + e.file() + ": " + e.message());
+      } catch (const std::bad_alloc&) {
+        throw;  // out of memory is no input error
       } catch (const std::exception& e) {
         where.fail(std::string("cannot mesh this section: ") + e.what());
       }
@@ -91,6 +97,7 @@ int main(int argc, char** argv) {
     }
     // Every file read so far (includes, mesh files) is an input the output must not replace.
     fc::checkOutputIsNotAnInput(output, fc::inputFilesRead());
+    stage.emplace("section analysis");
     fc::Progress progress("section-prep", 1.0, quiet);
     opt.progress = [&](const std::string& phase, double f) { progress.update(f, phase); };
     const auto t0 = std::chrono::steady_clock::now();
@@ -99,6 +106,7 @@ int main(int argc, char** argv) {
     progress.finish();
     std::optional<RecoveryRun> run;
     if (!recover.empty()) {
+      stage.emplace("stress recovery");
       run.emplace();
       for (int i = 0; i < 6; ++i) run->resultants(i) = recover[i];
       std::vector<int> element_material;
@@ -107,6 +115,7 @@ int main(int argc, char** argv) {
       for (const auto& m : mesh.materials) strengths.push_back(m.strength);
       run->elements = recoverStresses(p.recovery, element_material, strengths, run->resultants);
     }
+    stage.emplace("writing " + output);
     writeSectionFile(output, p, fc::sha256Files(inputs), input, mesh, run ? &*run : nullptr);
     if (!quiet) {
       printSummary(std::cout, p);

@@ -217,6 +217,8 @@ SectionMesh meshSection(const SectionSpec& spec) {
     return meshSectionWithGmsh(spec);
   } catch (const InputError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is no input error (common/memory.h)
   } catch (...) {
     // gmsh reports geometry and syntax errors by throwing std::string: one error,
     // never an abort.

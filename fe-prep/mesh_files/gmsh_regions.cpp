@@ -216,7 +216,8 @@ Mesh readGmsh(const RegionMeshRequest& r) {
 
 Mesh readRegionMesh(const RegionMeshRequest& request) {
   // A .geo file is a program: refuse shell, file and exit commands before gmsh runs it.
-  if (endsWith(request.path, ".geo")) checkGmshInput(request.path);
+  // An ASCII .msh is checked line by line first (counts, numbers given twice).
+  if (endsWith(request.path, ".geo") || endsWith(request.path, ".msh")) checkGmshInput(request.path);
   const FatalErrorContext context(request.path + ": gmsh: ");
   try {
     return readGmsh(request);
@@ -224,6 +225,8 @@ Mesh readRegionMesh(const RegionMeshRequest& request) {
     throw;
   } catch (const InputError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is no input error (common/memory.h)
   } catch (...) {
     throw std::runtime_error(request.path + ": gmsh: " + currentExceptionMessage());
   }

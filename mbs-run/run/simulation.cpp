@@ -53,6 +53,11 @@ std::string failureStatus(double t) {
     throw;
   } catch (const OutputError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    // Out of memory: writing what was computed needs memory too, and a results
+    // file from a run that could not go on is no result; the run ends with the
+    // error and no output (common/memory.h).
+    throw;
   } catch (const fc::Terminated& e) {
     return "interrupted by " + fc::signalName(e.signal());
   } catch (const NonFiniteState& e) {

@@ -548,6 +548,8 @@ std::shared_ptr<BodyGeometry> meshGeometry(const Body& b, const InputNode& at) {
   fc::FlexBodyFile f;
   try {
     f = fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is no input error
   } catch (const std::exception& e) {
     at.fail(std::string("cannot read the mesh of body '") + b.name + "': " + e.what());
   }
@@ -581,6 +583,8 @@ void parseStresses(const InputNode& list, Model& m) {
     if (b.stress) n.fail("body '" + b.name + "' is named twice");
     try {
       b.stress = loadStressRecovery(b.flex->file, b.modes);
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory is no input error
     } catch (const std::exception& e) {
       n.fail("cannot recover the stresses of body '" + b.name + "': " + e.what());
     }

@@ -223,6 +223,17 @@ p = tool("--sample", "forces.catch.stiffness=normal(200, -20)")
 check(p.returncode != 0 and "sigma must be positive" in p.stderr, f"impossible parameters: {p.stderr.strip()}")
 p = tool("--sample", "joints.hinge.bodies=normal(1, 1)")
 check(p.returncode != 0 and "not a number" in p.stderr, f"not a number: {p.stderr.strip()}")
+# Found by the format fuzzer (docs/robustness.md, "Format fuzzing", seed 2811): a
+# negative seed and a lognormal whose draws overflow were Python tracebacks, 1e8 samples
+# ran for minutes planning; each is now a refusal naming the option, with no plan left.
+for args, want in ((("--seed", "-1"), "--seed -1: give a non-negative integer"),
+                   (("--sample", "forces.catch.stiffness=lognormal(800, 1)"), "overflows a double"),
+                   (("--sample", "forces.catch.stiffness=normal(1e308, 1e308)"), "draws would overflow"),
+                   (("--samples", "100000000"), "at most 1,000,000 cases")):
+    a = args if args[0] == "--sample" else ("--sample", "forces.catch.stiffness=normal(200, 20)") + args
+    p = tool(*a, "--emit-makefile", os.path.join(work, "mk"))
+    check(p.returncode == 1 and want in p.stderr and "Traceback" not in p.stderr
+          and not os.path.exists(os.path.join(work, "s", "study.json")), f"{args} refused: {p.stderr.strip()[-300:]}")
 p = tool("--sample", "forces.catch.stiffness=normal(100, 120)", "--samples", "8", "--seed", "3",
          "--executor", "serial", "--metric", "max_angle:*", "--metric", "energy_dissipated")
 check(p.returncode == 0, f"the study goes on past rejected cases: {p.stderr.strip()[-400:]}")

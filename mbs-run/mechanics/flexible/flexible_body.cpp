@@ -111,6 +111,8 @@ FlexibleBodyData loadFlexibleBody(const InputNode& flexible) {
   if (auto g = flexible.get("geometric_stiffening"); g && g->asBool() && b.modes > 0) {
     try {
       b.stiffening = std::make_shared<const GeometricStiffening>(readGeometricStiffening(file, b.modes));
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory is no input error
     } catch (const std::exception& e) {
       g->fail(e.what());
     }
