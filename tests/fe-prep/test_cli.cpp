@@ -214,7 +214,7 @@ TEST(FePrepCli, ManyModesOfAThinPanelRunOrGiveALocatedMessage) {
 // vectors, under one block here) and PETSc's triplet copy of K's triangle
 // handed to MUMPS (about one block at b + k = 32): four. Measured 3.15-3.3 blocks
 // at this size (96 792 DOF); before the lifts were kept on their nodes and
-// the basis held once, 10.7 (lifts twice, K l_j, the constraint modes, B, its
+// the basis held once, 10.5 (lifts twice, K l_j, the constraint modes, B, its
 // restriction, K B, M B and the shapes each a full block). One more full copy
 // of the basis would pass the bound of 4. The peak is the reduction's (its
 // stages' lines); the body file's write, common to every reduction, follows.
