@@ -20,7 +20,7 @@ std::vector<long> nodeOwnership(long n_nodes, int ranks) {
 }
 
 void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements, const ElementKernel& kernel,
-              AssembledSystem& out, const std::function<void(double)>& progress, MassPattern mass_pattern) {
+              AssembledSystem& out, const std::function<void(double)>& progress) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -45,56 +45,43 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
     std::sort(s.begin(), s.end());
     s.erase(std::unique(s.begin(), s.end()), s.end());
   }
+  std::vector<std::vector<long>> adj(static_cast<std::size_t>(n));
+  std::vector<long> src;
+  auto link = [&](const long* nodes, int count) {
+    src.clear();
+    for (int i = 0; i < count; ++i) {
+      const auto& s = sources[static_cast<std::size_t>(nodes[i])];
+      src.insert(src.end(), s.begin(), s.end());
+    }
+    for (long a : src)
+      if (a >= n0 && a < n1) adj[static_cast<std::size_t>(a)].insert(adj[static_cast<std::size_t>(a)].end(), src.begin(), src.end());
+  };
+  for (const auto& t : mesh.triangles) link(t.data(), 3);
+  for (const auto& b : mesh.beams) link(b.data(), 2);
+
   const long row0 = n0 < n ? map.offset[static_cast<std::size_t>(n0)] : map.reduced;
   const long row1 = n1 < n ? map.offset[static_cast<std::size_t>(n1)] : map.reduced;
   const long local = row1 - row0;
-  // Per local row, the nonzeros in the diagonal and off-diagonal blocks when
-  // the given groups of nodes (elements, or single nodes) are coupled.
-  auto pattern = [&](bool nodal, std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
-    std::vector<std::vector<long>> adj(static_cast<std::size_t>(n));
-    std::vector<long> src;
-    auto link = [&](const long* nodes, int count) {
-      src.clear();
-      for (int i = 0; i < count; ++i) {
-        const auto& s = sources[static_cast<std::size_t>(nodes[i])];
-        src.insert(src.end(), s.begin(), s.end());
-      }
-      for (long a : src)
-        if (a >= n0 && a < n1) adj[static_cast<std::size_t>(a)].insert(adj[static_cast<std::size_t>(a)].end(), src.begin(), src.end());
-    };
-    if (nodal) {
-      for (long k = 0; k < n; ++k) link(&k, 1);
-    } else {
-      for (const auto& t : mesh.triangles) link(t.data(), 3);
-      for (const auto& b : mesh.beams) link(b.data(), 2);
+  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(local), 0), o_nnz(static_cast<std::size_t>(local), 0);
+  for (long i = n0; i < n1; ++i) {
+    auto& a = adj[static_cast<std::size_t>(i)];
+    a.push_back(i);
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+    PetscInt d = 0, o = 0;
+    for (long j : a) (j >= n0 && j < n1 ? d : o) += map.count(j);
+    for (int k = 0; k < map.count(i); ++k) {
+      d_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
+      o_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
     }
-    d_nnz.assign(static_cast<std::size_t>(local), 0);
-    o_nnz.assign(static_cast<std::size_t>(local), 0);
-    for (long i = n0; i < n1; ++i) {
-      auto& a = adj[static_cast<std::size_t>(i)];
-      a.push_back(i);
-      std::sort(a.begin(), a.end());
-      a.erase(std::unique(a.begin(), a.end()), a.end());
-      PetscInt d = 0, o = 0;
-      for (long j : a) (j >= n0 && j < n1 ? d : o) += map.count(j);
-      for (int k = 0; k < map.count(i); ++k) {
-        d_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
-        o_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
-      }
-      std::vector<long>().swap(a);
-    }
-  };
-  const bool nodal_mass = mass_pattern == MassPattern::Nodal;
+    std::vector<long>().swap(a);
+  }
+
   for (Mat* A : {&out.K, &out.M}) {
-    std::vector<PetscInt> d_nnz, o_nnz;
-    pattern(A == &out.M && nodal_mass, d_nnz, o_nnz);
     check(MatCreateAIJ(comm, local, local, map.reduced, map.reduced, 0, d_nnz.data(), 0, o_nnz.data(), A),
           "MatCreateAIJ");
     check(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   }
-  // The element blocks of a nodal mass are zero between nodes that share no
-  // reduced DOF (R^T D R with R block diagonal by node): exact zeros, skipped.
-  if (nodal_mass) check(MatSetOption(out.M, MAT_IGNORE_ZERO_ENTRIES, PETSC_TRUE), "MatSetOption");
   out.first_row = row0;
   out.local_rows = local;
 

@@ -36,17 +36,10 @@ struct AssembledSystem {
 // Contiguous node ranges per rank: nodes [first[r], first[r+1]).
 std::vector<long> nodeOwnership(long n_nodes, int ranks);
 
-// How the element mass matrices couple nodes: like the stiffness (consistent
-// mass, imported matrices), or each node only with itself (lumped masses,
-// point masses): M then gets its own node-local pattern, not K's with explicit
-// zeros (at 1e6 DOF the zeros of a lumped M held as many entries as K).
-enum class MassPattern { Elements, Nodal };
-
 // `elements`: number of elements; `kernel` fills one. progress(done) is called
 // on rank 0 as elements are processed (fraction of its share).
 void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements, const ElementKernel& kernel,
-              AssembledSystem& out, const std::function<void(double)>& progress = {},
-              MassPattern mass_pattern = MassPattern::Elements);
+              AssembledSystem& out, const std::function<void(double)>& progress = {});
 
 // Adds dm_k to the three translational diagonal entries of every node this rank
 // owns (in reduced DOF through the node's T) and re-assembles M.

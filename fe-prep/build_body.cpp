@@ -509,10 +509,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   };
   Progress pasm("assembly", 1.0, quiet);
   AssembledSystem sys;
-  // Lumped shell and beam masses and point masses couple each node only with
-  // itself; an imported M couples as given.
-  const MassPattern mass_pattern = spec.lumped && !imported ? MassPattern::Nodal : MassPattern::Elements;
-  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); }, mass_pattern);
+  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
   // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
   // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
   // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
@@ -735,7 +732,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     DofMap free_map = buildDofMap(mesh, {}, couplings, {});
     if (imported) holdSolidRotations(free_map, imported->solid);
     AssembledSystem free_sys;
-    assemble(comm, amesh, free_map, n_el, kernel, free_sys, {}, mass_pattern);
+    assemble(comm, amesh, free_map, n_el, kernel, free_sys);
     if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
     CraigBamptonResult cbr =
         craigBampton(comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(mesh, {}));
