@@ -37,12 +37,6 @@
 namespace fc::feprep {
 namespace {
 
-double peakRssMb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
-}
-
 void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -419,6 +413,12 @@ Eigen::MatrixXd interfaceShapes(const Eigen::MatrixXd& node_shapes, long node, c
   return s;
 }
 
+double peakRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
 BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options) {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -443,7 +443,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     mdesc << ")";
   }
   pmesh.finish(mdesc.str());
-  res.stages.push_back({"meshing", sw.seconds(), sw.cpu(), peakRssMb()});
+  res.stages.push_back({"meshing", sw.seconds(), sw.cpu(), peakRssMb(), 0.0});
 
   // --- interfaces and reference conditions
   sw.start();
@@ -605,7 +605,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
   }
   pasm.finish("(" + std::to_string(map.reduced) + " DOF)");
-  res.stages.push_back({"assembly", sw.seconds(), sw.cpu(), peakRssMb()});
+  res.stages.push_back({"assembly", sw.seconds(), sw.cpu(), peakRssMb(), 0.0});
 
   // --- eigen-solve
   sw.start();
@@ -718,7 +718,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   body.kept_eigenvalues = modal.eigenvalues;
   peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(rigid.cols()) +
               " rigid removed)");
-  res.stages.push_back({"eigensolve", sw.seconds(), sw.cpu(), peakRssMb()});
+  res.stages.push_back({"eigensolve", sw.seconds(), sw.cpu(), peakRssMb(), modal.factorisation.used_max_rank_mib});
   res.rigid_eigenvalues = modal.rigid_eigenvalues;
   res.rigid_share_removed_min = modal.rigid_projection_min;
   res.rigid_share_kept_max = modal.rigid_projection_max;
@@ -743,26 +743,26 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
         it->second = S;
       }
     }
-    std::vector<Eigen::VectorXd> lifts;
+    std::vector<Lift> lifts;
     for (const auto& [node, C] : node_rows) {
       const std::size_t first = lifts.size();
-      appendLifts(n, {node}, C, lifts);
+      appendLifts({node}, C, lifts);
       for (const auto& rc : couplings) {
         if (rc.master != node) continue;
         for (std::size_t j = first; j < lifts.size(); ++j)
           for (long sl : rc.slaves)
-            lifts[j].segment<6>(6 * sl) = rigidTransfer((mesh.nodes.row(sl) - mesh.nodes.row(node)).transpose()) *
-                                          lifts[j].segment<6>(6 * node);
+            lifts[j][sl] = rigidTransfer((mesh.nodes.row(sl) - mesh.nodes.row(node)).transpose()) * lifts[j][node];
       }
     }
-    for (const auto& pc : patch_conditions) appendLifts(n, pc.nodes, pc.C, lifts);
-    CraigBamptonInput cb;
-    cb.lifts.resize(6 * n, static_cast<long>(lifts.size()));
-    for (std::size_t j = 0; j < lifts.size(); ++j) cb.lifts.col(static_cast<long>(j)) = lifts[j];
+    for (const auto& pc : patch_conditions) appendLifts(pc.nodes, pc.C, lifts);
+    ConstraintModeInput cb;
+    cb.n_nodes = n;
+    cb.n_boundary = static_cast<long>(lifts.size());
+    cb.lifts = liftRows(lifts);
+    lifts.clear();
     // K l_j from the elements that touch the lifts (every rank, the mesh is whole).
     std::vector<char> support(static_cast<std::size_t>(n), 0);
-    for (long k = 0; k < n; ++k) support[static_cast<std::size_t>(k)] = cb.lifts.middleRows(6 * k, 6).cwiseAbs().maxCoeff() > 0.0;
-    cb.K_lifts = Eigen::MatrixXd::Zero(6 * n, cb.lifts.cols());
+    for (const auto& [node, rows] : cb.lifts) support[static_cast<std::size_t>(node)] = rows.cwiseAbs().maxCoeff() > 0.0;
     ElementResult er;
     for (long e = 0; e < n_el; ++e) {
       if (e >= n_tri + n_beam) break;  // point masses: no stiffness
@@ -771,30 +771,41 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       if (!touches) continue;
       kernel(e, er);
       const long a = static_cast<long>(er.nodes.size());
-      Eigen::MatrixXd Le(6 * a, cb.lifts.cols());
-      for (long i = 0; i < a; ++i) Le.middleRows(6 * i, 6) = cb.lifts.middleRows(6 * er.nodes[static_cast<std::size_t>(i)], 6);
+      Eigen::MatrixXd Le = Eigen::MatrixXd::Zero(6 * a, cb.n_boundary);
+      for (long i = 0; i < a; ++i) {
+        const auto it = cb.lifts.find(er.nodes[static_cast<std::size_t>(i)]);
+        if (it != cb.lifts.end()) Le.middleRows(6 * i, 6) = it->second;
+      }
       const Eigen::MatrixXd KLe = er.K * Le;
-      for (long i = 0; i < a; ++i) cb.K_lifts.middleRows(6 * er.nodes[static_cast<std::size_t>(i)], 6) += KLe.middleRows(6 * i, 6);
+      for (long i = 0; i < a; ++i) {
+        auto it = cb.K_lifts.find(er.nodes[static_cast<std::size_t>(i)]);
+        if (it == cb.K_lifts.end())
+          it = cb.K_lifts.emplace(er.nodes[static_cast<std::size_t>(i)], Eigen::MatrixXd::Zero(6, cb.n_boundary)).first;
+        it->second += KLe.middleRows(6 * i, 6);
+      }
     }
-    // The free body (its couplings only) for the reduced K and M.
+    cb.K_fixed = sys.K;
+    cb.fixed = &map;
+    cb.normal = &modal.vectors;
+    Stopwatch swr;
+    swr.start();
+    CraigBamptonBasis basis = constraintModes(comm, cb);
+    res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
+    swr.start();
+    res.constraint_modes = cb.n_boundary;
+    // The free body (its couplings only) for the reduced K and M, assembled
+    // after the constraint modes' factorisation is freed: the two never coexist.
     DofMap free_map = buildDofMap(mesh, {}, couplings, {});
     if (imported) holdSolidRotations(free_map, imported->solid);
     AssembledSystem free_sys;
     assemble(comm, amesh, free_map, n_el, kernel, free_sys);
     if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
-    cb.K_fixed = sys.K;
-    cb.fixed = &map;
-    cb.K_free = free_sys.K;
-    cb.M_free = free_sys.M;
-    cb.free = &free_map;
-    cb.normal.resize(6 * n, modal.eigenvalues.size());
-    for (long j = 0; j < modal.eigenvalues.size(); ++j) cb.normal.col(j) = map.expand(modal.vectors.col(j));
-    cb.rigid = admissibleRigidModes(mesh, {});
-    const CraigBamptonResult cbr = craigBampton(comm, cb);
+    CraigBamptonResult cbr =
+        craigBampton(comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(mesh, {}));
+    res.stages.push_back({"reduction", swr.seconds(), swr.cpu(), peakRssMb(), 0.0});
     body.eigenvalues = cbr.eigenvalues;
-    body.shapes = cbr.shapes;
+    body.shapes = std::move(cbr.shapes);
     body.fixed_interface_coordinates = cbr.fixed_interface_coordinates;
-    res.constraint_modes = cb.lifts.cols();
     res.normal_modes = modal.eigenvalues.size();
     res.rigid_removed = cbr.rigid_eigenvalues.size();
     res.rigid_eigenvalues = cbr.rigid_eigenvalues;

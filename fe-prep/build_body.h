@@ -18,6 +18,9 @@ struct StageStats {
   double seconds = 0.0;  // wall time
   double cpu_seconds = 0.0;  // this process's CPU time (user + system, all threads)
   double peak_rss_mb = 0.0;  // this process's peak resident memory after the stage
+  // MUMPS's own account of the stage's factorisation on this process (INFOG(21),
+  // MiB; 0: none): the share of the peak that is the factor and its work space.
+  double factorisation_mb = 0.0;
 };
 
 struct BuildResult {
@@ -43,6 +46,9 @@ struct BuildOptions {
   bool quiet = false;    // no progress lines
   double tolerance = 1e-10;
 };
+
+// This process's peak resident memory so far, MiB (getrusage).
+double peakRssMb();
 
 BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options = {});
 

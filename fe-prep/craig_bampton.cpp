@@ -10,63 +10,116 @@
 
 namespace fc::feprep {
 
-void appendLifts(long n_nodes, const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Eigen::VectorXd>& lifts) {
+void appendLifts(const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Lift>& lifts) {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd s = svd.singularValues();
   for (long k = 0; k < s.size(); ++k) {
     if (s(k) <= 1e-10 * s(0)) break;
     // The k-th independent boundary combination: C l = u_k, l = v_k / s_k.
     const Eigen::VectorXd l = svd.matrixV().col(k) / s(k);
-    Eigen::VectorXd full = Eigen::VectorXd::Zero(6 * n_nodes);
-    for (std::size_t i = 0; i < nodes.size(); ++i) full.segment<6>(6 * nodes[i]) = l.segment<6>(6 * static_cast<long>(i));
-    lifts.push_back(full);
+    Lift lift;
+    for (std::size_t i = 0; i < nodes.size(); ++i) lift[nodes[i]] = l.segment<6>(6 * static_cast<long>(i));
+    lifts.push_back(std::move(lift));
   }
 }
 
-CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in) {
-  const long nb = in.lifts.cols(), nk = in.normal.cols(), N = in.lifts.rows();
-  CraigBamptonResult out;
-  // Constraint modes: one factorisation of the fixed-interface K, nb solves.
-  out.constraint_modes.resize(N, nb);
+NodeRows liftRows(const std::vector<Lift>& lifts) {
+  NodeRows rows;
+  const long nb = static_cast<long>(lifts.size());
+  for (long j = 0; j < nb; ++j)
+    for (const auto& [node, v] : lifts[static_cast<std::size_t>(j)]) {
+      auto it = rows.find(node);
+      if (it == rows.end()) it = rows.emplace(node, Eigen::MatrixXd::Zero(6, nb)).first;
+      it->second.col(j) = v;
+    }
+  return rows;
+}
+
+namespace {
+
+// The free map keeps every node's six DOF as they are (no coupling, no held
+// rotation): restrict() is then the identity, and B serves as its own restriction.
+bool isIdentity(const DofMap& map, long N) {
+  if (map.reduced != N) return false;
+  for (std::size_t i = 0; i < map.own.size(); ++i)
+    if (map.offset[i] != 6 * static_cast<long>(i) || map.own[i].rows() != 6 || !map.own[i].isIdentity(0.0)) return false;
+  return true;
+}
+
+}  // namespace
+
+CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in) {
+  const long nb = in.n_boundary, nk = in.normal ? in.normal->cols() : 0, N = 6 * in.n_nodes;
+  CraigBamptonBasis out;
+  out.n_boundary = nb;
+  out.B.resize(N, nb + nk);
+  // Constraint modes: one factorisation of the fixed-interface K, nb solves;
+  // each right-hand side and solution is one vector at a time.
   {
     OwnedKsp ksp = choleskySolver(comm, in.K_fixed);
     OwnedVec b, x;
     check(MatCreateVecs(in.K_fixed, &x, &b), "MatCreateVecs");
     for (long j = 0; j < nb; ++j) {
-      setLocal(b, -reduceForce(*in.fixed, in.K_lifts.col(j)));
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
+      for (const auto& [node, rows] : in.K_lifts) f.segment<6>(6 * node) = rows.col(j);
+      setLocal(b, -reduceForce(*in.fixed, f));
       check(KSPSolve(ksp, b, x), "KSPSolve");
       KSPConvergedReason why;
       check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
       if (why < 0)
         throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
                                  "rigid motions free: clamp the boundary interfaces, or pin at least three)");
-      out.constraint_modes.col(j) = in.lifts.col(j) + in.fixed->expand(gatherAll(x));
+      out.B.col(j) = in.fixed->expand(gatherAll(x));
+      for (const auto& [node, rows] : in.lifts) out.B.col(j).segment<6>(6 * node) += rows.col(j);
+      if (j == 0) {
+        PC pc;
+        check(KSPGetPC(ksp, &pc), "KSPGetPC");
+        out.factorisation = mumpsMemory(pc);
+      }
     }
   }
-  // The basis in the free body's DOF, the reduced matrices, their eigenvectors.
-  Eigen::MatrixXd B(N, nb + nk);
-  B << out.constraint_modes, in.normal;
-  Eigen::MatrixXd Bf(in.free->reduced, nb + nk), KB(in.free->reduced, nb + nk), MB(in.free->reduced, nb + nk);
-  for (long j = 0; j < nb + nk; ++j) {
-    Bf.col(j) = in.free->restrict(B.col(j));
-    KB.col(j) = multiply(in.K_free, Bf.col(j));
-    MB.col(j) = multiply(in.M_free, Bf.col(j));
+  for (long j = 0; j < nk; ++j) out.B.col(nb + j) = in.fixed->expand(in.normal->col(j));
+  return out;
+}
+
+CraigBamptonResult craigBampton(MPI_Comm comm, CraigBamptonBasis basis, Mat K_free, Mat M_free, const DofMap& free,
+                                const Eigen::MatrixXd& rigid) {
+  (void)comm;  // the products are PETSc's, on K_free's communicator
+  const Eigen::MatrixXd& B = basis.B;
+  const long N = B.rows(), m = B.cols(), nk = m - basis.n_boundary;
+  CraigBamptonResult out;
+  // The basis in the free body's DOF (B itself when that map is the identity).
+  Eigen::MatrixXd Bf_own;
+  if (!isIdentity(free, N)) {
+    Bf_own.resize(free.reduced, m);
+    for (long j = 0; j < m; ++j) Bf_own.col(j) = free.restrict(B.col(j));
+  }
+  const Eigen::MatrixXd& Bf = isIdentity(free, N) ? B : Bf_own;
+  // K_r and M_r through one work block: K Bf, then M Bf.
+  Eigen::MatrixXd Kr, Mr;
+  {
+    Eigen::MatrixXd W(free.reduced, m);
+    for (long j = 0; j < m; ++j) W.col(j) = multiply(K_free, Bf.col(j));
+    Kr = Bf.transpose() * W;
+    for (long j = 0; j < m; ++j) W.col(j) = multiply(M_free, Bf.col(j));
+    Mr = Bf.transpose() * W;
   }
   // Massless boundary DOF (a clamped shell node's drilling rotation) are
   // condensed, dependent vectors dropped (ritz_basis.h).
-  const RitzSolution es = ritzEigen(Bf.transpose() * KB, Bf.transpose() * MB);
+  const RitzSolution es = ritzEigen(Kr, Mr);
   out.massless_condensed = es.massless;
   // Rigid share of each eigenvector: b^T G^-1 b, b = R^T M (B x), G = R^T M R.
-  const long r = in.rigid.cols();
-  Eigen::MatrixXd MRf(in.free->reduced, r), Rf(in.free->reduced, r);
+  const long r = rigid.cols();
+  Eigen::MatrixXd MRf(free.reduced, r), Rf(free.reduced, r);
   for (long j = 0; j < r; ++j) {
-    Rf.col(j) = in.free->restrict(in.rigid.col(j));
-    MRf.col(j) = multiply(in.M_free, Rf.col(j));
+    Rf.col(j) = free.restrict(rigid.col(j));
+    MRf.col(j) = multiply(M_free, Rf.col(j));
   }
   const Eigen::MatrixXd G = Rf.transpose() * MRf;
   const Eigen::MatrixXd Ginv = G.ldlt().solve(Eigen::MatrixXd::Identity(r, r));
   const Eigen::MatrixXd& X = es.X;  // X^T Mr X = I
   const Eigen::MatrixXd BtMR = Bf.transpose() * MRf;  // (nb + nk, r)
+  Bf_own.resize(0, 0);
   std::vector<long> kept;
   std::vector<double> removed;
   for (long k = 0; k < X.cols(); ++k) {

@@ -12,32 +12,61 @@
 // the rigid-motion space above one half) are removed, the others give the
 // file's shapes B x (M-orthonormal) and eigenvalues, so /modes/ keeps its
 // meaning (contracts.md, fe-prep, reduction: craig_bampton).
+// Two stages, so that the free body's matrices are assembled only after the
+// constraint modes' factorisation is freed: constraintModes, then craigBampton.
 #include <mpi.h>
 #include <petscmat.h>
 
 #include <Eigen/Dense>
 #include <functional>
+#include <map>
 #include <vector>
 
+#include "fe-prep/petsc_handles.h"
 #include "fe-prep/reference_conditions.h"
 
 namespace fc::feprep {
 
-struct CraigBamptonInput {
-  Mat K_fixed = nullptr;           // reduced with the reference conditions (T)
-  const DofMap* fixed = nullptr;   // T
-  Mat K_free = nullptr, M_free = nullptr;  // the free body (couplings only)
-  const DofMap* free = nullptr;
-  Eigen::MatrixXd lifts;           // (6 n, n_boundary) full nodal vectors
-  Eigen::MatrixXd K_lifts;         // (6 n, n_boundary) K l_j, full (from the elements)
-  Eigen::MatrixXd normal;          // (6 n, n_normal) fixed-interface modes, full
-  Eigen::MatrixXd rigid;           // (6 n, 6) rigid motions, full
+// The boundary DOF's lifts and their products K l_j live on a patch and its
+// neighbours: stored per node, node -> (6, n_boundary) rows, never as
+// n_boundary full vectors of zeros.
+using NodeRows = std::map<long, Eigen::MatrixXd>;
+
+// One lift while the boundary DOF are gathered: node -> its six values.
+using Lift = std::map<long, Eigen::Matrix<double, 6, 1>>;
+
+// Boundary DOF of one reference condition: C (c x 6 p) on the full DOF of
+// `nodes`; appends one lift per independent row (C^+ e_j on those nodes).
+void appendLifts(const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Lift>& lifts);
+
+// The lifts as node rows (6, n_lifts), in ascending node order.
+NodeRows liftRows(const std::vector<Lift>& lifts);
+
+struct ConstraintModeInput {
+  Mat K_fixed = nullptr;            // reduced with the reference conditions (T)
+  const DofMap* fixed = nullptr;    // T
+  long n_nodes = 0;
+  long n_boundary = 0;
+  NodeRows lifts;                   // l_j on the nodes they touch
+  NodeRows K_lifts;                 // K l_j (from the elements), on the nodes it touches
+  const Eigen::MatrixXd* normal = nullptr;  // (T's reduced DOF, n_normal) fixed-interface modes
 };
+
+// The basis B = [Psi Phi] (6 n, n_boundary + n_normal), full nodal vectors:
+// the constraint modes solved one right-hand side at a time on one MUMPS
+// factorisation of the fixed-interface K (freed before returning), the
+// fixed-interface modes expanded beside them. B is the only dense block of
+// this size the reduction holds while the factor is alive.
+struct CraigBamptonBasis {
+  Eigen::MatrixXd B;
+  long n_boundary = 0;
+  MumpsMemory factorisation;
+};
+CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in);
 
 struct CraigBamptonResult {
   Eigen::VectorXd eigenvalues;     // ascending
   Eigen::MatrixXd shapes;          // (6 n, n_shapes), M-orthonormal
-  Eigen::MatrixXd constraint_modes;// (6 n, n_boundary), the static constraint modes
   // (n_shapes, n_normal): row i holds the fixed-interface modal amplitudes of
   // unit shape i (the last n_normal rows of the Ritz eigenvector), so a state q
   // has eta = F^T q and each fixed-interface mode's strain energy is
@@ -49,10 +78,11 @@ struct CraigBamptonResult {
   long massless_condensed = 0;     // basis directions without mass, condensed (ritz_basis.h)
 };
 
-CraigBamptonResult craigBampton(MPI_Comm comm, const CraigBamptonInput& in);
-
-// Boundary DOF of one reference condition: C (c x 6 p) on the full DOF of
-// `nodes`; appends one lift per independent row (C^+ e_j on those nodes).
-void appendLifts(long n_nodes, const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::vector<Eigen::VectorXd>& lifts);
+// K_r = B^T K B, M_r = B^T M B on the free body (K_free, M_free on `free`'s
+// reduced DOF, couplings only), diagonalised, rigid motions removed. Works in
+// one dense (free DOF, n_basis) block beside B (none when `free` keeps every
+// DOF as it is: B itself is used) and the shapes it returns; B is released.
+CraigBamptonResult craigBampton(MPI_Comm comm, CraigBamptonBasis basis, Mat K_free, Mat M_free, const DofMap& free,
+                                const Eigen::MatrixXd& rigid);
 
 }  // namespace fc::feprep

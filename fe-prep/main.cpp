@@ -46,8 +46,14 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
                 it.static_error(3), it.static_error(4), it.static_error(5));
   }
   if (!b.reduction.empty()) std::printf("  basis: %s\n", b.reduction.c_str());
-  for (const auto& s : r.stages)
-    std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)\n", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
+  for (const auto& s : r.stages) {
+    std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
+    // MUMPS's own figure for the stage's factorisation: the share of the peak that is the factor.
+    if (s.factorisation_mb > 0) std::printf(" MUMPS factor %.0f MB", s.factorisation_mb);
+    std::printf("\n");
+  }
+  // The body file's write (the shapes transposed and stress data) can set the peak of its own.
+  std::printf("  %-11s peak RSS %.0f MB\n", "write", fc::feprep::peakRssMb());
 }
 
 }  // namespace

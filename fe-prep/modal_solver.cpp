@@ -149,6 +149,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
     check(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
     result.iterations += its;
+    result.factorisation = largerMumpsMemory(result.factorisation, mumpsMemory(pc));
 
     std::vector<Pair> pairs;
     OwnedVec xr, Mx, xall;

@@ -10,6 +10,8 @@
 #include <functional>
 #include <stdexcept>
 
+#include "fe-prep/petsc_handles.h"
+
 namespace fc::feprep {
 
 struct ModalRequest {
@@ -28,6 +30,7 @@ struct ModalResult {
   double rigid_projection_min = 1.0;  // smallest rigid-space share among the removed modes
   double rigid_projection_max = 0.0;  // largest rigid-space share among the kept modes
   long iterations = 0;
+  MumpsMemory factorisation;          // the shift-invert factorisation's (the largest of the solves)
 };
 
 // The request cannot be met: more modes than the body has with a finite

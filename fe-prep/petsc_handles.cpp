@@ -1,5 +1,6 @@
 #include "fe-prep/petsc_handles.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -195,6 +196,32 @@ OwnedKsp choleskySolver(MPI_Comm comm, Mat A) {
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   return ksp;
+}
+
+MumpsMemory mumpsMemory(PC pc) {
+  MumpsMemory m;
+  Mat F = nullptr;
+  // A PC not yet set up has no factor: PETSc would raise an error; none is wanted here.
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  const PetscErrorCode ierr = PCFactorGetMatrix(pc, &F);
+  PetscPopErrorHandler();
+  if (ierr || !F) return m;
+  MatSolverType type = nullptr;
+  if (MatFactorGetSolverType(F, &type) || !type || std::strcmp(type, MATSOLVERMUMPS) != 0) return m;
+  PetscInt v17 = 0, v21 = 0, v22 = 0;
+  check(MatMumpsGetInfog(F, 17, &v17), "MatMumpsGetInfog");
+  check(MatMumpsGetInfog(F, 21, &v21), "MatMumpsGetInfog");
+  check(MatMumpsGetInfog(F, 22, &v22), "MatMumpsGetInfog");
+  const double mib = 1e6 / (1024.0 * 1024.0);
+  m.estimated_mib = static_cast<double>(v17) * mib;
+  m.used_mib = static_cast<double>(v22) * mib;
+  m.used_max_rank_mib = static_cast<double>(v21) * mib;
+  return m;
+}
+
+MumpsMemory largerMumpsMemory(const MumpsMemory& a, const MumpsMemory& b) {
+  return {std::max(a.estimated_mib, b.estimated_mib), std::max(a.used_mib, b.used_mib),
+          std::max(a.used_max_rank_mib, b.used_max_rank_mib)};
 }
 
 }  // namespace fc::feprep

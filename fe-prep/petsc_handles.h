@@ -77,4 +77,18 @@ Eigen::VectorXd multiply(Mat A, const Eigen::VectorXd& v);
 // MUMPS Cholesky factorisation (command-line PETSc options still apply).
 OwnedKsp choleskySolver(MPI_Comm comm, Mat A);
 
+// MUMPS's own account of a factorisation's memory, in MiB (MUMPS reports
+// millions of bytes: converted): estimated after the analysis (INFOG(17), all
+// ranks), used by the factorisation (INFOG(22), all ranks; INFOG(21), the
+// largest rank, which bounds one process's resident memory). Zeros when pc
+// holds no MUMPS factor (not set up, or another solver chosen by options).
+struct MumpsMemory {
+  double estimated_mib = 0.0;
+  double used_mib = 0.0;
+  double used_max_rank_mib = 0.0;
+};
+MumpsMemory mumpsMemory(PC pc);
+// The larger of two accounts, field by field (a stage with several factorisations).
+MumpsMemory largerMumpsMemory(const MumpsMemory& a, const MumpsMemory& b);
+
 }  // namespace fc::feprep

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "common/h5io.h"
@@ -201,6 +202,62 @@ TEST(FePrepCli, ManyModesOfAThinPanelRunOrGiveALocatedMessage) {
                      "degrees of freedom that carry mass (58 more carry none"),
             std::string::npos)
       << out;
+  std::filesystem::remove_all(dir);
+}
+
+// Craig-Bampton memory (docs/benchmarks.md, fe-prep Craig-Bampton memory): what
+// the reduction adds to the assembled matrices is MUMPS's factorisation (its
+// own figure, INFOG(21), on the stage lines) plus a few dense blocks of the
+// basis' size, 8 N (b + k) bytes (N DOF, b boundary DOF, k fixed-interface
+// modes). The blocks alive at the peak: the basis B itself, one work block
+// (K B, then M B) or the shapes B x, the eigen-solve's Krylov basis (23
+// vectors, under one block here) and PETSc's triplet copy of K's triangle
+// handed to MUMPS (about one block at b + k = 32): four. Measured 3.15-3.3 blocks
+// at this size (96 792 DOF); before the lifts were kept on their nodes and
+// the basis held once, 10.5 (lifts twice, K l_j, the constraint modes, B, its
+// restriction, K B, M B and the shapes each a full block). One more full copy
+// of the basis would pass the bound of 4. The peak is the reduction's (its
+// stages' lines); the body file's write, common to every reduction, follows.
+TEST(FePrepCli, CraigBamptonMemoryIsTheFactorisationPlusTheBasis) {
+  const std::string dir = scratch("cb-memory");
+  std::ostringstream y;
+  y << "materials:\n  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}\n"
+    << "body:\n  name: panel\n  shell:\n    rectangle: {length: 2.0, width: 1.3}\n    material: cfrp_iso\n"
+    << "    thickness: 0.002\n    element: dst\n    mesh: {size: 0.0138}\n  interfaces:\n";
+  std::string pins;
+  int k = 0;
+  for (double x : {-0.9, -0.3, 0.3, 0.9})
+    for (double yy : {-0.55, 0.55}) {
+      y << "    P" << k << ": {point: [" << x << ", " << yy << ", 0.0], coupling: distributing, nodes: {within: 0.05}}\n";
+      pins += (k ? ", P" : "P") + std::to_string(k);
+      ++k;
+    }
+  y << "  reference: {pin: [" << pins << "]}\n  reduction: craig_bampton\n  modes: 8\n";
+  writeText(dir + "/panel.yaml", y.str());
+  std::string out;
+  ASSERT_EQ(run(feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/cb.h5", out, dir), 0) << out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(; ([0-9]+) DOF)"))) << out;
+  const double N = std::stod(m[1]);
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(craig_bampton: ([0-9]+) constraint modes \+ ([0-9]+) fixed)"))) << out;
+  const double basis_columns = std::stod(m[1]) + std::stod(m[2]);
+  EXPECT_EQ(basis_columns, 32.0);  // 8 pinned points, 3 rows each, and 8 modes
+  double assembly = 0, factor = 0, peak = 0;
+  const std::regex stage(R"(\n +([a-z]+) +[0-9.]+ s  \(CPU [0-9.]+ s, peak RSS ([0-9]+) MB\)( MUMPS factor ([0-9]+) MB)?)");
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), stage); it != std::sregex_iterator(); ++it) {
+    if ((*it)[1] == "assembly") assembly = std::stod((*it)[2]);
+    if ((*it)[1] == "constraints" || (*it)[1] == "reduction") peak = std::max(peak, std::stod((*it)[2]));
+    if ((*it)[4].matched) factor = std::max(factor, std::stod((*it)[4]));
+  }
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(write +peak RSS ([0-9]+) MB)"))) << out;
+  ASSERT_GT(peak, 0.0) << out;
+  ASSERT_GT(assembly, 0.0) << out;
+  ASSERT_GT(factor, 0.0) << out;  // MUMPS's own account is on the stage lines
+  const double block_mb = 8.0 * N * basis_columns / (1024.0 * 1024.0);
+  const double blocks = (peak - assembly - factor) / block_mb;
+  EXPECT_LE(blocks, 4.0) << "peak " << peak << " MB, assembly " << assembly << " MB, MUMPS factor " << factor
+                         << " MB, basis block " << block_mb << " MB\n" << out;
+  EXPECT_GE(peak, assembly + factor) << out;
   std::filesystem::remove_all(dir);
 }
 

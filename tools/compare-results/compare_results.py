@@ -56,7 +56,8 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 VOLATILE_ATTRIBUTES = {("/", "cpu_seconds"), ("/", "created")}
 VOLATILE_FEPREP_ATTRIBUTES = {("/", "inputs_sha256")}
 VOLATILE_TEXT = [(re.compile(r"CPU [0-9.]+ s, real-time factor [0-9.eE+-]+"), "CPU <masked> s, real-time factor <masked>"),
-                 (re.compile(r"[0-9.]+ s  \(CPU [0-9.]+ s, peak RSS [0-9]+ MB\)"), "<masked> s  (CPU <masked> s, peak RSS <masked> MB)"),
+                 (re.compile(r"[0-9.]+ s  \(CPU [0-9.]+ s, peak RSS [0-9]+ MB\)( MUMPS factor [0-9]+ MB)?"), "<masked> s  (CPU <masked> s, peak RSS <masked> MB)"),
+                 (re.compile(r"write +peak RSS [0-9]+ MB"), "write peak RSS <masked> MB"),
                  (re.compile(r"[0-9.eE+-]+ s CPU"), "<masked> s CPU")]
 
 
