@@ -66,9 +66,14 @@ CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in) 
       check(KSPSolve(ksp, b, x), "KSPSolve");
       KSPConvergedReason why;
       check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-      if (why < 0)
+      if (why < 0) {
+        // MUMPS out of memory fails the factorisation the same way: said as such.
+        PC pc;
+        check(KSPGetPC(ksp, &pc), "KSPGetPC");
+        throwIfOutOfMemory(pc, 0, "the fixed-interface stiffness");
         throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
                                  "rigid motions free: clamp the boundary interfaces, or pin at least three)");
+      }
       out.B.col(j) = in.fixed->expand(gatherAll(x));
       for (const auto& [node, rows] : in.lifts) out.B.col(j).segment<6>(6 * node) += rows.col(j);
       if (j == 0) {
