@@ -180,7 +180,9 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
   bool inside = true;
   if (fe.radius > 0.0) {
     const Vector3d e = cs.normal.normalized();
-    inside = (d - d.dot(e) * e).norm() <= fe.radius;
+    const double in_plane = (d - d.dot(e) * e).norm();
+    inside = in_plane <= fe.radius;
+    cs.outside = std::max(0.0, in_plane - fe.radius);
   }
   cs.touching = cs.penetration > 0.0 && inside;
   if (cs.touching) {
@@ -190,6 +192,10 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
     cs.force = std::max(0.0, cs.elastic * (1.0 + fe.hysteresis * cs.rate));
   }
   return cs;
+}
+
+double reportedPenetration(const ContactState& cs) {
+  return cs.outside > 0.0 ? -std::hypot(cs.outside, cs.penetration) : cs.penetration;
 }
 
 void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,

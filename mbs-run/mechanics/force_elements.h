@@ -67,10 +67,17 @@ struct ContactState {
   double force = 0.0;        // F [N] >= 0
   double elastic = 0.0;      // k d^n while in contact, else 0 [N]
   bool touching = false;     // d > 0 and inside the patch
+  double outside = 0.0;      // in-plane distance of P beyond the patch's edge [m] (0 inside or unbounded)
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // n_g, global
   Eigen::RowVectorXd grad_i, grad_j;                 // dd/dv of the two bodies
 };
 ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P);
+
+// What the results report as the contact's penetration: d inside the patch,
+// and outside it minus P's distance to the patch disk, -hypot(outside, d)
+// (negative: apart), so that a point far off the patch does not show a
+// penetration the element never acts on.
+double reportedPenetration(const ContactState& cs);
 
 // "NAME (type)", or "#k (type)" for an unnamed element, for messages.
 std::string forceElementLabel(const Model& model, int index);

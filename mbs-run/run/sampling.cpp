@@ -96,7 +96,7 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   for (int f : m.contactElements()) {
     const ContactState cs = contactState(m.forces[static_cast<std::size_t>(f)], P);
     s.contact_force.push_back(sys.forceEnabled(f) ? cs.force : 0.0);
-    s.contact_penetration.push_back(cs.penetration);
+    s.contact_penetration.push_back(reportedPenetration(cs));
   }
   s.energy = sys.energies(t, y);
   s.energy_sensitivity = sys.energySensitivity(t, y);

@@ -312,6 +312,26 @@ simulation: {t_end: %.17g, output_step: 1.0e-5, rtol: 1.0e-10}
   EXPECT_LT(b.energy_error, 1e-6 * 0.5 * m * v0 * v0);
 }
 
+TEST(Contact, OutsideThePatchNoForceAndTheDistanceToIt) {
+  // A ball 0.02 m behind the plane but 1.0 m from the patch's centre (radius
+  // 0.6): no force, and the reported penetration is minus its distance to the
+  // patch disk, -hypot(0.4, 0.02), not the +0.02 it would have on an unbounded plane.
+  const Results r = simulate(sceneFromText(R"(
+bodies:
+  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}
+  - {name: ball, rigid: {mass: 2.0, inertia: [[0.01,0,0],[0,0.01,0],[0,0,0.01]]}, position: [1.0, 0, -0.02]}
+forces:
+  - {name: pad, type: contact, bodies: [ball, ground], point: [0, 0, 0], plane: {point: [0, 0, 0], normal: [0, 0, 1]},
+     stiffness: 1.0e5, radius: 0.6}
+simulation: {t_end: 0.01, output_step: 0.005}
+)"),
+                             {true});
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_EQ(r.contact_force[0].back(), 0.0);
+  EXPECT_NEAR(r.contact_penetration[0].back(), -std::hypot(0.4, 0.02), 1e-12);
+  EXPECT_NEAR(r.position[1].back().z(), -0.02, 1e-12);  // nothing pushed it
+}
+
 TEST(Contact, BadInputIsNamed) {
   const std::string head = R"(
 bodies:
