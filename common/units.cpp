@@ -67,7 +67,7 @@ bool keyDimension(const std::string& key, const std::string& parent_type, Dimens
       {"height", kLength}, {"length", kLength}, {"mesh_size", kLength}, {"size", kLength},
       {"graded_from", kLength}, {"interfaces", kLength}, {"point", kLength}, {"points", kLength},
       {"within", kLength}, {"box", kLength}, {"at", kLength}, {"origin", kLength}, {"position", kLength},
-      {"center_of_mass", kLength}, {"free_length", kLength}, {"geometry", kLength}, {"segment", kLength},
+      {"center_of_mass", kLength}, {"free_length", kLength}, {"radius", kLength}, {"geometry", kLength}, {"segment", kLength},
       {"rectangle", kLength},
       // angles, ratios, counts: never converted
       {"angle_deg", kNone}, {"angle", kNone}, {"angle0", kNone}, {"initial_angle", kNone}, {"amplitude", kNone},
@@ -81,7 +81,7 @@ bool keyDimension(const std::string& key, const std::string& parent_type, Dimens
       {"frequency", kRate}, {"max_frequency_hz", kRate}, {"speed", kRate}, {"rate", kRate},
       {"stabilization_frequency", kRate}, {"angular_velocity", kRate},
       // motion and loads
-      {"velocity", kVelocity}, {"g", kAcceleration}, {"force", kForce}, {"torque", kTorque}, {"value", kTorque},
+      {"velocity", kVelocity}, {"impact_speed", kVelocity}, {"g", kAcceleration}, {"force", kForce}, {"torque", kTorque}, {"value", kTorque},
       {"stiffness", kLinearStiffness}, {"EI", Dimension{3, 1, -2}},
       {"modal_coordinates", kModal}, {"modal_velocities", kModalRate},
   };

@@ -144,6 +144,13 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
     std::printf("  distance %s-%s: smallest %.4g m at t = %.6g s\n", m.bodies[m.distance_pairs[k][0]].name.c_str(),
                 m.bodies[m.distance_pairs[k][1]].name.c_str(), r.smallest_distance[k].value,
                 r.smallest_distance[k].time);
+  {
+    const std::vector<int> contacts = m.contactElements();
+    for (std::size_t k = 0; k < contacts.size() && k < r.peak_contact_force.size(); ++k)
+      std::printf("  contact %s: largest force %.4g N at t = %.6g s, largest penetration %.4g m at t = %.6g s\n",
+                  m.forces[static_cast<std::size_t>(contacts[k])].name.c_str(), r.peak_contact_force[k].value,
+                  r.peak_contact_force[k].time, r.peak_contact_penetration[k].value, r.peak_contact_penetration[k].time);
+  }
   // Margins (monitors/margins.h): the named beams against buckling, the named
   // joints' peak reactions, every latch's arrival.
   const fc::mbs::Margins& mg = r.margins;

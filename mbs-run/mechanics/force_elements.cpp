@@ -1,5 +1,8 @@
 #include "mbs-run/mechanics/force_elements.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/flexible/modal.h"
 
@@ -138,7 +141,62 @@ void constantTorque(const Context& c, const ForceElement& fe, ForceSums& s) {
   s.applied_power += fe.vector.dot(c.P[fe.body_i].A * c.P[fe.body_i].w);
 }
 
+void contact(const Context& c, const ForceElement& fe, ForceSums& s) {
+  const ContactState cs = contactState(fe, c.P);
+  if (!cs.touching) return;
+  if (c.forces) {
+    const Body &bi = c.model.bodies[fe.body_i], &bj = c.model.bodies[fe.body_j];
+    if (!bi.fixed) s.Q.segment(bi.dof_index, bi.nv()) -= cs.force * cs.grad_i.transpose();
+    if (!bj.fixed) s.Q.segment(bj.dof_index, bj.nv()) -= cs.force * cs.grad_j.transpose();
+    s.dissipation += (cs.force - cs.elastic) * cs.rate;
+  }
+  if (c.potential) s.potential += cs.elastic * cs.penetration / (fe.exponent + 1.0);
+}
+
 }  // namespace
+
+ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P) {
+  const BodyPose &a = P[fe.body_i], &b = P[fe.body_j];
+  const Attached ap = attachedPoint(a, fe.point_i, fe.shapes_i.psi);
+  const Attached bq = attachedPoint(b, fe.point_j, fe.shapes_j.psi);
+  const bool flex_j = b.modal.size() > 0 && fe.shapes_j.theta.cols() == b.modal.size();
+  const Vector3d& n0 = fe.vector;
+  const Vector3d n = flex_j ? Vector3d(n0 + Vector3d(fe.shapes_j.theta * b.modal).cross(n0)) : n0;  // body j axes
+  ContactState cs;
+  cs.normal = b.A * n;
+  const Vector3d d = ap.x - bq.x, dj = b.A.transpose() * d;
+  cs.penetration = -d.dot(cs.normal);
+  // dd/dv_i = -n_g^T J_P; dd/dv_j = [n_g^T, ((u_Q + d_j) x n)^T, (Psi^T n + Theta^T (d_j x n0))^T]
+  // with u_Q the body-axes position of Q (derivation in docs/mbs-run.md).
+  cs.grad_i = -cs.normal.transpose() * ap.J;
+  cs.grad_j.setZero(b.nv());
+  cs.grad_j.head<3>() = cs.normal.transpose();
+  const Vector3d uq = flex_j ? Vector3d(fe.point_j + fe.shapes_j.psi * b.modal) : fe.point_j;
+  cs.grad_j.segment<3>(3) = (uq + dj).cross(n).transpose();
+  if (flex_j)
+    cs.grad_j.tail(b.modal.size()) =
+        (fe.shapes_j.psi.transpose() * n + fe.shapes_j.theta.transpose() * dj.cross(n0)).transpose();
+  cs.rate = cs.grad_i.dot(velocityOf(a)) + cs.grad_j.dot(velocityOf(b));
+  bool inside = true;
+  if (fe.radius > 0.0) {
+    const Vector3d e = cs.normal.normalized();
+    const double in_plane = (d - d.dot(e) * e).norm();
+    inside = in_plane <= fe.radius;
+    cs.outside = std::max(0.0, in_plane - fe.radius);
+  }
+  cs.touching = cs.penetration > 0.0 && inside;
+  if (cs.touching) {
+    cs.elastic = fe.stiffness * std::pow(cs.penetration, fe.exponent);
+    // Never pulling: a fast separation (alpha d_dot < -1) leaves the hysteresis
+    // term larger than the elastic one; the force is then 0, not negative.
+    cs.force = std::max(0.0, cs.elastic * (1.0 + fe.hysteresis * cs.rate));
+  }
+  return cs;
+}
+
+double reportedPenetration(const ContactState& cs) {
+  return cs.outside > 0.0 ? -std::hypot(cs.outside, cs.penetration) : cs.penetration;
+}
 
 void addForceElement(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
                      const std::vector<JointRuntime>& joints, ForceQuantity what, ForceSums& sums) {
@@ -149,6 +207,7 @@ void addForceElement(const Model& model, const ForceElement& fe, const std::vect
     case ForceType::TranslationalSpringDamper: translationalSpringDamper(c, fe, sums); break;
     case ForceType::ConstantForce: constantForce(c, fe, sums); break;
     case ForceType::ConstantTorque: constantTorque(c, fe, sums); break;
+    case ForceType::Contact: contact(c, fe, sums); break;
   }
 }
 
@@ -160,6 +219,11 @@ void interfaceForces(const Model& model, const ForceElement& fe, const std::vect
     if (sp.L <= 0.0) return;
     if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, sp.F * sp.e});
     if (!fe.interface_j.empty()) out.push_back({fe.body_j, &fe.interface_j, -sp.F * sp.e});
+  } else if (fe.type == ForceType::Contact && (!fe.interface_i.empty() || !fe.interface_j.empty())) {
+    const ContactState cs = contactState(fe, P);
+    if (!cs.touching) return;
+    if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, cs.force * cs.normal});
+    if (!fe.interface_j.empty()) out.push_back({fe.body_j, &fe.interface_j, -cs.force * cs.normal});
   } else if (fe.type == ForceType::ConstantForce && !fe.interface_i.empty()) {
     out.push_back({fe.body_i, &fe.interface_i, fe.vector});
   }
@@ -174,6 +238,7 @@ std::string forceElementLabel(const Model& model, int index) {
     case ForceType::TranslationalSpringDamper: type = "translational_spring_damper"; break;
     case ForceType::ConstantForce: type = "force"; break;
     case ForceType::ConstantTorque: type = "torque"; break;
+    case ForceType::Contact: type = "contact"; break;
   }
   return (fe.name.empty() ? "#" + std::to_string(index + 1) : fe.name) + " (" + type + ")";
 }

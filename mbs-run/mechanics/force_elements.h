@@ -49,6 +49,36 @@ struct InterfaceForce {
 void interfaceForces(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
                      std::vector<InterfaceForce>& out);
 
+// One-sided contact of a point P on body i with the plane through a point Q
+// of body j, normal n (body j axes; the plane turns with the interface
+// rotation Theta w when Q is an interface of a flexible body j):
+//   penetration d = -(x_P - x_Q) . n_g,  n_g = A_j (n + (Theta_Q w_j) x n),
+//   force F = max(0, k d^n (1 + alpha d_dot)) for d > 0 (and P within `radius`
+//   of Q in the plane when a radius is given), else 0,
+// the Hunt-Crossley law with Lankarani and Nikravesh's hysteresis factor
+// alpha = 3 (1 - e^2) / (4 v0) (J. Mech. Des. 112:369, 1990). F pushes P
+// along +n_g and body j along -n_g; the generalised forces are -F dd/dq, the
+// exact gradient of the d the potential k d^(n+1) / (n+1) is a function of,
+// so the elastic part's power is exactly -dV/dt and the rest, (F - k d^n)
+// d_dot >= 0, is dissipated.
+struct ContactState {
+  double penetration = 0.0;  // d [m] (negative: separated along the normal)
+  double rate = 0.0;         // d_dot [m/s]
+  double force = 0.0;        // F [N] >= 0
+  double elastic = 0.0;      // k d^n while in contact, else 0 [N]
+  bool touching = false;     // d > 0 and inside the patch
+  double outside = 0.0;      // in-plane distance of P beyond the patch's edge [m] (0 inside or unbounded)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // n_g, global
+  Eigen::RowVectorXd grad_i, grad_j;                 // dd/dv of the two bodies
+};
+ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P);
+
+// What the results report as the contact's penetration: d inside the patch,
+// and outside it minus P's distance to the patch disk, -hypot(outside, d)
+// (negative: apart), so that a point far off the patch does not show a
+// penetration the element never acts on.
+double reportedPenetration(const ContactState& cs);
+
 // "NAME (type)", or "#k (type)" for an unnamed element, for messages.
 std::string forceElementLabel(const Model& model, int index);
 

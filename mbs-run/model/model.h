@@ -117,7 +117,7 @@ struct Joint {
   bool stop_only = false;
 };
 
-enum class ForceType { Gravity, RotationalSpringDamper, TranslationalSpringDamper, ConstantForce, ConstantTorque };
+enum class ForceType { Gravity, RotationalSpringDamper, TranslationalSpringDamper, ConstantForce, ConstantTorque, Contact };
 
 // f(x) piecewise linear through (x_k, y_k), constant beyond the ends.
 struct PiecewiseLinear {
@@ -141,7 +141,13 @@ struct ForceElement {
   // The flexible body's interface named as the point, empty for coordinates
   // (its force there stiffens the body: flexible/geometric_stiffening.h).
   std::string interface_i, interface_j;
-  double stiffness = 0.0, free_length = 0.0;  // translational spring
+  double stiffness = 0.0, free_length = 0.0;  // translational spring; contact: k [N/m^exponent]
+  // One-sided contact (force_elements.h, contactState): point i (on body_i)
+  // against the plane through point j of body_j with normal `vector` (body_j
+  // axes, unit); F = k d^n (1 + hysteresis d_dot) >= 0 for a penetration d > 0.
+  double exponent = 1.0;    // n: 1 linear, 1.5 Hertz
+  double hysteresis = 0.0;  // Lankarani-Nikravesh 3 (1 - e^2) / (4 v0) [s/m]
+  double radius = 0.0;      // in-plane extent of the plane patch about point j; 0: unbounded
 };
 
 struct Event {
@@ -221,6 +227,14 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<ForceElement> forces;
   std::vector<Event> events;
+  // Indices into `forces` of the contact elements, in order: the rows of the
+  // results' contacts/ group.
+  std::vector<int> contactElements() const {
+    std::vector<int> k;
+    for (std::size_t f = 0; f < forces.size(); ++f)
+      if (forces[f].type == ForceType::Contact) k.push_back(static_cast<int>(f));
+    return k;
+  }
   // Contact monitor (`outputs: {distances: [[A, B], ...]}`): body index pairs.
   std::vector<std::array<int, 2>> distance_pairs;
   // `outputs: {stress_every: K}`: the full stress fields get every K-th output

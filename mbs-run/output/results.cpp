@@ -99,6 +99,13 @@ std::vector<Channel> resultChannels(const Model& m) {
   }
   for (std::size_t k = 0; k < m.distance_pairs.size(); ++k)
     scalar(distanceChannel(m, k), [k](const Sample& s) { return s.distances[k]; });
+  // Contact force elements: contacts/NAME/force [N] and penetration [m].
+  const std::vector<int> contacts = m.contactElements();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const std::string p = "contacts/" + m.forces[static_cast<std::size_t>(contacts[k])].name + "/";
+    scalar(p + "force", [k](const Sample& s) { return s.contact_force[k]; });
+    scalar(p + "penetration", [k](const Sample& s) { return s.contact_penetration[k]; });
+  }
   scalar("energy/kinetic", [](const Sample& s) { return s.energy.kinetic; });
   scalar("energy/potential", [](const Sample& s) { return s.energy.potential; });
   scalar("energy/strain", [](const Sample& s) { return s.energy.strain; });
@@ -114,6 +121,25 @@ namespace {
 // which also bounds what a stopped run can lose to a SIGKILL since the last flush.
 constexpr unsigned long long kBlockBytes = 1ull << 20;
 constexpr double kFlushSeconds = 10.0;
+
+// Each contact element's largest force and penetration with when, on its
+// datasets; the largest force of all at the root (contact_force_max, _time, _name).
+void writeContactPeaks(fc::H5File& f, const Model& model, const RunSummary& r) {
+  const std::vector<int> contacts = model.contactElements();
+  if (contacts.empty() || r.peak_contact_force.size() != contacts.size()) return;
+  std::size_t worst = 0;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const std::string p = "/contacts/" + model.forces[static_cast<std::size_t>(contacts[k])].name + "/";
+    f.setAttribute(p + "force", "peak", r.peak_contact_force[k].value);
+    f.setAttribute(p + "force", "peak_time", r.peak_contact_force[k].time);
+    f.setAttribute(p + "penetration", "peak", r.peak_contact_penetration[k].value);
+    f.setAttribute(p + "penetration", "peak_time", r.peak_contact_penetration[k].time);
+    if (r.peak_contact_force[k].value > r.peak_contact_force[worst].value) worst = k;
+  }
+  f.setAttribute("/", "contact_force_max", r.peak_contact_force[worst].value);
+  f.setAttribute("/", "contact_force_max_time", r.peak_contact_force[worst].time);
+  f.setAttribute("/", "contact_force_max_name", model.forces[static_cast<std::size_t>(contacts[worst])].name);
+}
 
 hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk_rows) {
   const std::string path = "/" + c.name;
@@ -433,6 +459,7 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     f.setAttribute("/", "clearance_min_time", r.smallest_distance[best].time);
     f.setAttribute("/", "clearance_min_pair", distanceChannel(model, best).substr(std::string("distances/").size()));
   }
+  writeContactPeaks(f, model, r);
   f.setAttribute("/", "cpu_seconds", r.cpu_seconds);
   f.setAttribute("/", "steps", r.steps);
   f.setAttribute("/", "rejected_steps", r.rejected_steps);

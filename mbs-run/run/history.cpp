@@ -20,6 +20,14 @@ void History::append(const Sample& s) {
   }
   if (distances.size() != s.distances.size()) distances.resize(s.distances.size());
   for (std::size_t k = 0; k < s.distances.size(); ++k) distances[k].push_back(s.distances[k]);
+  if (contact_force.size() != s.contact_force.size()) {
+    contact_force.resize(s.contact_force.size());
+    contact_penetration.resize(s.contact_force.size());
+  }
+  for (std::size_t k = 0; k < s.contact_force.size(); ++k) {
+    contact_force[k].push_back(s.contact_force[k]);
+    contact_penetration[k].push_back(s.contact_penetration[k]);
+  }
   time.push_back(s.time);
   for (std::size_t k = 0; k < nb; ++k) {
     const BodySample& b = s.bodies[k];
@@ -69,6 +77,10 @@ Sample History::row(std::size_t i) const {
     s.joints[j].limit_torque = limit_torque[j][i];
   }
   for (std::size_t k = 0; k < distances.size(); ++k) s.distances.push_back(distances[k][i]);
+  for (std::size_t k = 0; k < contact_force.size(); ++k) {
+    s.contact_force.push_back(contact_force[k][i]);
+    s.contact_penetration.push_back(contact_penetration[k][i]);
+  }
   s.energy.kinetic = kinetic[i];
   s.energy.potential = potential[i];
   s.energy.strain = strain[i];

@@ -27,6 +27,7 @@ struct History {
   std::vector<std::vector<int>> limit_state;       // [joint][row] (joints with limits, else empty)
   std::vector<std::vector<double>> limit_torque;   // [joint][row]
   std::vector<std::vector<double>> distances;      // [pair of Model::distance_pairs][row] [m]
+  std::vector<std::vector<double>> contact_force, contact_penetration;  // [Model::contactElements][row]
 
   void append(const Sample& s);
   Sample row(std::size_t i) const;  // the row as it was taken

@@ -71,6 +71,16 @@ void RunSummary::observe(const Model& m, const Sample& s) {
     smallest_distance.assign(s.distances.size(), Peak{std::numeric_limits<double>::infinity(), 0.0, ""});
   for (std::size_t k = 0; k < s.distances.size(); ++k)
     if (s.distances[k] < smallest_distance[k].value) smallest_distance[k] = {s.distances[k], s.time, ""};
+  if (peak_contact_force.size() != s.contact_force.size()) {
+    peak_contact_force.assign(s.contact_force.size(), Peak{0.0, 0.0, ""});
+    peak_contact_penetration.assign(s.contact_force.size(),
+                                    Peak{-std::numeric_limits<double>::infinity(), 0.0, ""});
+  }
+  for (std::size_t k = 0; k < s.contact_force.size(); ++k) {
+    if (s.contact_force[k] > peak_contact_force[k].value) peak_contact_force[k] = {s.contact_force[k], s.time, ""};
+    if (s.contact_penetration[k] > peak_contact_penetration[k].value)
+      peak_contact_penetration[k] = {s.contact_penetration[k], s.time, ""};
+  }
   margins.observe(m, s);
   energy_dissipated = s.energy.dissipated;
   energy_scale = std::max({energy_scale, std::abs(s.energy.kinetic), std::abs(s.energy.potential), s.energy.dissipated});

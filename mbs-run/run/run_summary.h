@@ -80,6 +80,9 @@ struct RunSummary {
   std::vector<StressEnvelope> stress_envelopes;
   // Smallest distance of each contact-monitor pair (Model::distance_pairs).
   std::vector<Peak> smallest_distance;
+  // Per contact force element (Model::contactElements): its largest force
+  // [N] and largest penetration [m] over the output rows, with when.
+  std::vector<Peak> peak_contact_force, peak_contact_penetration;
   // Buckling of the named beams, every joint's peak reactions, the latches (margins.h).
   Margins margins;
   std::vector<std::string> warnings;  // e.g. an output step that undersamples the modes

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "mbs-run/mechanics/force_elements.h"
 #include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
@@ -92,6 +93,11 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
     return *placed[k];
   };
   for (const auto& pr : m.distance_pairs) s.distances.push_back(treeDistance(place(pr[0]), place(pr[1])));
+  for (int f : m.contactElements()) {
+    const ContactState cs = contactState(m.forces[static_cast<std::size_t>(f)], P);
+    s.contact_force.push_back(sys.forceEnabled(f) ? cs.force : 0.0);
+    s.contact_penetration.push_back(reportedPenetration(cs));
+  }
   s.energy = sys.energies(t, y);
   s.energy_sensitivity = sys.energySensitivity(t, y);
   s.violation = sys.constraintViolation(t, y);

@@ -42,6 +42,9 @@ struct Sample {
   EnergySensitivity energy_sensitivity;  // for the run-quality allowance
   double violation = 0.0;  // largest position-level constraint violation
   std::vector<double> distances;  // contact monitor, per Model::distance_pairs [m]
+  // Contact force elements (Model::contactElements order): force [N] (0 while
+  // disabled) and penetration [m] (negative: apart along the plane normal).
+  std::vector<double> contact_force, contact_penetration;
 };
 
 // The output row at (t, y); y's Euler parameters are normalised first.

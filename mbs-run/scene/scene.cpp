@@ -350,6 +350,42 @@ PiecewiseLinear parseTable(const InputNode& t) {
   return f;
 }
 
+// `type: contact`: a point of the first body against a plane of the second
+// (force_elements.h, contactState).
+void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
+  f.allowKeys({"name", "type", "bodies", "point", "plane", "stiffness", "exponent", "restitution", "impact_speed",
+               "radius", "enabled"});
+  fe.type = ForceType::Contact;
+  const InputNode b = f["bodies"];
+  if (!b.isSequence() || b.size() != 2) b.fail("expected two body names [body of the point, body of the plane]");
+  fe.body_i = bodyRef(m, b.at(0));
+  fe.body_j = bodyRef(m, b.at(1));
+  if (fe.body_i == fe.body_j) b.fail("expected two different bodies");
+  fe.point_i = pointRef(m, fe.body_i, f["point"], fe.shapes_i);
+  if (f["point"].isScalar()) fe.interface_i = f["point"].asString();
+  const InputNode pl = f["plane"];
+  pl.allowKeys({"point", "normal"});
+  fe.point_j = pointRef(m, fe.body_j, pl["point"], fe.shapes_j);
+  if (pl["point"].isScalar()) fe.interface_j = pl["point"].asString();
+  fe.vector = unitVector(pl["normal"]);
+  fe.exponent = f.has("exponent") ? f["exponent"].asInRange(1.0, 3.0, "") : 1.0;
+  if (fe.exponent != 1.0 && f.units())
+    f["exponent"].fail("a contact stiffness with an exponent other than 1 is in N/m^exponent, which units: cannot "
+                       "convert: give this scene in SI (no units:) or use exponent 1");
+  fe.stiffness = f["stiffness"].asInRange(0.0, kMaxStiffness, "N/m^exponent");
+  if (!(fe.stiffness > 0.0)) f["stiffness"].fail("expected a contact stiffness > 0");
+  if (f.has("restitution") != f.has("impact_speed"))
+    f.fail("expected 'restitution' and 'impact_speed' together (the restitution e is met at impacts of speed v0)");
+  if (f.has("restitution")) {
+    const double e = f["restitution"].asNonNegative();
+    if (!(e > 0.0 && e <= 1.0)) f["restitution"].fail("expected a restitution coefficient in (0, 1]");
+    const double v0 = f["impact_speed"].asNonNegative();
+    if (!(v0 > 0.0)) f["impact_speed"].fail("expected an impact speed > 0 [m/s]");
+    fe.hysteresis = 3.0 * (1.0 - e * e) / (4.0 * v0);
+  }
+  fe.radius = f.has("radius") ? f["radius"].asNonNegative() : 0.0;
+}
+
 ForceElement parseForce(const Model& m, const InputNode& f, int index) {
   const std::string type = f["type"].asString();
   ForceElement fe;
@@ -385,6 +421,8 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.stiffness = f["stiffness"].asInRange(0.0, kMaxStiffness, "N/m");
     fe.damping = f.has("damping") ? f["damping"].asInRange(0.0, kMaxDamping, "N s/m") : 0.0;
     fe.free_length = f["free_length"].asNonNegative();
+  } else if (type == "contact") {
+    parseContact(m, f, fe);
   } else if (type == "force") {
     f.allowKeys({"name", "type", "body", "point", "force", "enabled"});
     fe.type = ForceType::ConstantForce;
@@ -403,9 +441,10 @@ ForceElement parseForce(const Model& m, const InputNode& f, int index) {
     fe.vector = vec3(f["torque"], kMaxLoad, "N m");
   } else {
     f["type"].fail("unknown force type '" + type +
-                   "': expected gravity, rotational_spring_damper, translational_spring_damper, force or torque" +
-                   didYouMean(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "force",
-                                     "torque"}));
+                   "': expected gravity, rotational_spring_damper, translational_spring_damper, contact, force or "
+                   "torque" +
+                   didYouMean(type, {"gravity", "rotational_spring_damper", "translational_spring_damper", "contact",
+                                     "force", "torque"}));
   }
   return fe;
 }
