@@ -1,6 +1,7 @@
 #include "fe-prep/mesh_files/nastran.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -324,6 +325,32 @@ class Builder {
   void readPshell(const Card& k);
   void readPcomp(const Card& k);
   void readBeamProperty(const Card& k);
+
+  // The passes of build(), in order.
+  using CardPasses = std::array<std::vector<const NastranCard*>, 4>;
+  CardPasses sortCards() const;
+  void readSystemsGridsMaterials(const std::vector<const NastranCard*>& cards, NastranModel& out);
+  void readProperties(const std::vector<const NastranCard*>& cards);
+  void readElements(const std::vector<const NastranCard*>& cards, NastranModel& out);
+  void numberNodesAndElements(NastranModel& out);
+  void readRigidElementsAndSets(const std::vector<const NastranCard*>& cards, NastranModel& out);
+  void readMasses(const std::vector<const NastranCard*>& cards, NastranModel& out);
+
+  // What readElements leaves for the passes after it.
+  struct Shell {
+    std::vector<long> g;
+    long pid;
+    Eigen::Vector3d axis;
+    const NastranCard* card;
+  };
+  struct Line {
+    long ga, gb, pid;
+    Eigen::Vector3d v;
+  };
+  std::vector<Shell> shell_elements_;
+  std::vector<Line> line_elements_;
+  std::set<long> used_grids_;                    // grids on an element: the mesh's nodes
+  std::map<long, const NastranCard*> eids_;      // every element id, for duplicates
 };
 
 const Cord& Builder::cord(long cid, const Card& at, std::size_t field, const std::string& name, int depth) {
@@ -646,8 +673,21 @@ void Builder::readBeamProperty(const Card& k) {
 }
 
 NastranModel Builder::build() {
+  // A list of passes, each needing what the ones before it read.
   NastranModel out;
-  Mesh& mesh = out.mesh;
+  const CardPasses by_pass = sortCards();
+  readSystemsGridsMaterials(by_pass[0], out);
+  readProperties(by_pass[1]);
+  readElements(by_pass[2], out);
+  numberNodesAndElements(out);
+  readRigidElementsAndSets(by_pass[3], out);
+  readMasses(by_pass[3], out);
+  return out;
+}
+
+// Supported cards sorted into the passes that read them; every unsupported
+// card not under ignore: is named, with its count and first place.
+Builder::CardPasses Builder::sortCards() const {
   // Unsupported cards: name -> count and first place.
   struct Tally {
     int count = 0;
@@ -658,7 +698,7 @@ NastranModel Builder::build() {
                                                    "CBEAM", "CROD",   "PSHELL", "PCOMP",  "MAT1",   "MAT8",
                                                    "PBAR",  "PBARL",  "PBEAM",  "PROD",   "CONM2",  "RBE2",
                                                    "RBE3",  "SPC1"};
-  std::vector<const NastranCard*> by_pass[4];  // 0: CORD, GRID, MAT; 1: properties; 2: elements; 3: rigid, masses, sets
+  CardPasses by_pass;  // 0: CORD, GRID, MAT; 1: properties; 2: elements; 3: rigid, masses, sets
   for (const auto& c : cards_) {
     if (ignore_.count(c.name)) continue;
     if (!kSupported.count(c.name)) {
@@ -682,8 +722,12 @@ NastranModel Builder::build() {
                          "; list them under ignore: [CARD, ...] in the body to leave them out (docs/nastran.md lists the supported cards)");
   }
 
+  return by_pass;
+}
+
+void Builder::readSystemsGridsMaterials(const std::vector<const NastranCard*>& cards, NastranModel& out) {
   // Pass 0: coordinate systems, grids, materials.
-  for (const NastranCard* c : by_pass[0]) {
+  for (const NastranCard* c : cards) {
     const Card k{*c, firstField(*c)};
     if (c->name == "CORD2R" || c->name == "CORD2C") {
       Cord cs;
@@ -722,8 +766,11 @@ NastranModel Builder::build() {
     if (g.cd != 0) cord(g.cd, k, 5, "CD");
     out.grid_point[id] = g.basic;
   }
+}
+
+void Builder::readProperties(const std::vector<const NastranCard*>& cards) {
   // Pass 1: properties.
-  for (const NastranCard* c : by_pass[1]) {
+  for (const NastranCard* c : cards) {
     const Card k{*c, firstField(*c)};
     const long pid = k.positive(0, "PID");
     if (!pid_card_.emplace(pid, c).second)
@@ -735,27 +782,16 @@ NastranModel Builder::build() {
     else if (c->name == "PCOMP") readPcomp(kk);
     else readBeamProperty(kk);
   }
+}
+
+void Builder::readElements(const std::vector<const NastranCard*>& cards, NastranModel& out) {
   // Pass 2: elements, nodes numbered by ascending GRID id.
-  struct Shell {
-    std::vector<long> g;
-    long pid;
-    Eigen::Vector3d axis;
-    const NastranCard* card;
-  };
-  struct Line {
-    long ga, gb, pid;
-    Eigen::Vector3d v;
-  };
-  std::vector<Shell> shells;
-  std::vector<Line> lines;
-  std::set<long> used;
-  std::map<long, const NastranCard*> eids;
   std::set<long> rod_grids, bending_grids;
-  for (const NastranCard* c : by_pass[2]) {
+  for (const NastranCard* c : cards) {
     const Card k0{*c, firstField(*c)};
     const long eid = k0.positive(0, "EID");
     const Card k{*c, std::to_string(eid)};
-    if (!eids.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
+    if (!eids_.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
     const long pid = k.integerOr(1, "PID", eid);
     if (ignore_.count("PID" + std::to_string(pid))) continue;
     ++out.element_counts[c->name];
@@ -777,7 +813,7 @@ NastranModel Builder::build() {
         if (std::count(s.g.begin(), s.g.end(), gid) > 1) k.fail(2 + j, "G" + std::to_string(j + 1), "a grid repeated in the element");
       }
       const std::size_t th = 2 + nn, zo = 3 + nn;
-      k.mustBeBlank(zo, "ZOFFS", "offset shells (ZOFFS) are not supported; expected blank or 0");
+      k.mustBeBlank(zo, "ZOFFS", "offset shell_elements_ (ZOFFS) are not supported; expected blank or 0");
       for (std::size_t j = 10; j < 11 + nn; ++j)
         if (!k.blank(j)) k.fail(j, j == 10 ? "TFLAG" : "T" + std::to_string(j - 10), "element grid thicknesses are not supported; expected blank (the property's thickness)");
       const Eigen::Vector3d normal = nn == 3 ? Eigen::Vector3d((x[1] - x[0]).cross(x[2] - x[0]))
@@ -803,8 +839,8 @@ NastranModel Builder::build() {
         e1 = (e1 - e1.dot(nrm) * nrm).normalized();
         s.axis = std::cos(theta) * e1 + std::sin(theta) * nrm.cross(e1);
       }
-      for (long gid : s.g) used.insert(gid), bending_grids.insert(gid);
-      shells.push_back(s);
+      for (long gid : s.g) used_grids_.insert(gid), bending_grids.insert(gid);
+      shell_elements_.push_back(s);
     } else {
       const bool rod = n == "CROD";
       if (!beams_.count(pid) || beams_[pid].rod != rod)
@@ -820,8 +856,8 @@ NastranModel Builder::build() {
       const Eigen::Vector3d axis = grid(l.gb, k, 3, "GB").basic - a.basic;
       if (rod) {
         l.v = perpendicular(axis);
-        used.insert(l.ga), used.insert(l.gb), rod_grids.insert(l.ga), rod_grids.insert(l.gb);
-        lines.push_back(l);
+        used_grids_.insert(l.ga), used_grids_.insert(l.gb), rod_grids.insert(l.ga), rod_grids.insert(l.gb);
+        line_elements_.push_back(l);
         continue;
       }
       if (k.isInteger(4)) {
@@ -857,8 +893,8 @@ NastranModel Builder::build() {
         k.mustBeBlank(16, "SA", "warping grids are not supported; expected blank");
         k.mustBeBlank(17, "SB", "warping grids are not supported; expected blank");
       }
-      used.insert(l.ga), used.insert(l.gb), bending_grids.insert(l.ga), bending_grids.insert(l.gb);
-      lines.push_back(l);
+      used_grids_.insert(l.ga), used_grids_.insert(l.gb), bending_grids.insert(l.ga), bending_grids.insert(l.gb);
+      line_elements_.push_back(l);
     }
   }
   for (long g : rod_grids)
@@ -868,11 +904,15 @@ NastranModel Builder::build() {
              "the grid joins only CROD elements: its rotations would have no stiffness; model the truss with CBAR/PBAR "
              "or give the grid a shell or beam");
     }
-  if (shells.empty() && lines.empty())
+  if (shell_elements_.empty() && line_elements_.empty())
     throw InputError(cards_.empty() ? "" : cards_.front().file, 0, 0, "", "the deck has no CTRIA3, CQUAD4, CBAR, CBEAM or CROD elements");
 
-  mesh.nodes.resize(static_cast<long>(used.size()), 3);
-  for (long g : used) {
+}
+
+void Builder::numberNodesAndElements(NastranModel& out) {
+  Mesh& mesh = out.mesh;
+  mesh.nodes.resize(static_cast<long>(used_grids_.size()), 3);
+  for (long g : used_grids_) {
     const long k = static_cast<long>(out.node_of_grid.size());
     out.node_of_grid[g] = k;
     mesh.nodes.row(k) = grids_.at(g).basic.transpose();
@@ -895,7 +935,7 @@ NastranModel Builder::build() {
     mesh.beam_properties.push_back(bp.p);
   }
   auto node = [&](long g) { return out.node_of_grid.at(g); };
-  for (const auto& s : shells) {
+  for (const auto& s : shell_elements_) {
     const int grp = group(s.pid);
     auto add = [&](long a, long b, long c) {
       mesh.triangles.push_back({node(a), node(b), node(c)});
@@ -918,13 +958,17 @@ NastranModel Builder::build() {
       }
     }
   }
-  for (const auto& l : lines) {
+  for (const auto& l : line_elements_) {
     mesh.beams.push_back({node(l.ga), node(l.gb)});
     mesh.beam_group.push_back(group(l.pid));
     mesh.beam_property.push_back(beam_index.at(l.pid));
     mesh.beam_x2.push_back(l.v.normalized());
   }
 
+}
+
+void Builder::readRigidElementsAndSets(const std::vector<const NastranCard*>& cards, NastranModel& out) {
+  Mesh& mesh = out.mesh;
   // Pass 3: rigid elements, masses, SPC sets.
   auto meshNode = [&](long gid, const Card& k, std::size_t i, const std::string& name) {
     grid(gid, k, i, name);
@@ -953,7 +997,7 @@ NastranModel Builder::build() {
     }
     return g;
   };
-  for (const NastranCard* c : by_pass[3]) {
+  for (const NastranCard* c : cards) {
     const Card k0{*c, firstField(*c)};
     const std::string& n = c->name;
     if (n == "SPC1") {
@@ -973,7 +1017,7 @@ NastranModel Builder::build() {
     } else if (n == "RBE2" || n == "RBE3") {
       const long eid = k0.positive(0, "EID");
       const Card k{*c, std::to_string(eid)};
-      if (!eids.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
+      if (!eids_.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
       NastranRbe r;
       r.eid = eid;
       r.rigid = n == "RBE2";
@@ -1037,12 +1081,16 @@ NastranModel Builder::build() {
       out.rbes[eid] = r;
     }
   }
-  for (const NastranCard* c : by_pass[3]) {
+}
+
+void Builder::readMasses(const std::vector<const NastranCard*>& cards, NastranModel& out) {
+  Mesh& mesh = out.mesh;
+  for (const NastranCard* c : cards) {
     if (c->name != "CONM2") continue;
     const Card k0{*c, firstField(*c)};
     const long eid = k0.positive(0, "EID");
     const Card k{*c, std::to_string(eid)};
-    if (!eids.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
+    if (!eids_.emplace(eid, c).second) k.fail(0, "EID", "a second element with id " + std::to_string(eid));
     const long gid = k.positive(1, "G");
     const Grid& g = grid(gid, k, 1, "G");
     const long cid = k.integerOr(2, "CID", 0);
@@ -1087,7 +1135,6 @@ NastranModel Builder::build() {
     }
     mesh.point_masses.push_back(pm);
   }
-  return out;
 }
 
 }  // namespace

@@ -124,83 +124,6 @@ constexpr double kFlushSeconds = 10.0;
 
 // Each contact element's largest force and penetration with when, on its
 // datasets; the largest force of all at the root (contact_force_max, _time, _name).
-void writeContactPeaks(fc::H5File& f, const Model& model, const RunSummary& r) {
-  const std::vector<int> contacts = model.contactElements();
-  if (contacts.empty() || r.peak_contact_force.size() != contacts.size()) return;
-  std::size_t worst = 0;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const std::string p = "/contacts/" + model.forces[static_cast<std::size_t>(contacts[k])].name + "/";
-    f.setAttribute(p + "force", "peak", r.peak_contact_force[k].value);
-    f.setAttribute(p + "force", "peak_time", r.peak_contact_force[k].time);
-    f.setAttribute(p + "penetration", "peak", r.peak_contact_penetration[k].value);
-    f.setAttribute(p + "penetration", "peak_time", r.peak_contact_penetration[k].time);
-    if (r.peak_contact_force[k].value > r.peak_contact_force[worst].value) worst = k;
-  }
-  f.setAttribute("/", "contact_force_max", r.peak_contact_force[worst].value);
-  f.setAttribute("/", "contact_force_max_time", r.peak_contact_force[worst].time);
-  f.setAttribute("/", "contact_force_max_name", model.forces[static_cast<std::size_t>(contacts[worst])].name);
-}
-
-hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk_rows) {
-  const std::string path = "/" + c.name;
-  const std::size_t slash = path.rfind('/');
-  if (slash > 0) f.createGroup(path.substr(0, slash));
-  // (rows), (rows, columns) or (rows, dims...): the row dimension grows.
-  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{static_cast<hsize_t>(chunk_rows)};
-  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
-                                        : c.rank1      ? std::vector<hsize_t>{}
-                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
-  for (hsize_t d : trailing) {
-    dims.push_back(d);
-    maxdims.push_back(d);
-    chunk.push_back(std::max<hsize_t>(d, 1));
-  }
-  const int rank = static_cast<int>(dims.size());
-  const hid_t space = H5Screate_simple(rank, dims.data(), maxdims.data());
-  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  H5Pset_chunk(dcpl, rank, chunk.data());
-  // Rows arrive in whole blocks, so no chunk cache is needed; HDF5's default
-  // (1 MB per dataset) would hold ~1 MB per channel for nothing.
-  const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
-  H5Pset_chunk_cache(dapl, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0, H5D_CHUNK_CACHE_W0_DEFAULT);
-  const hid_t d = H5Dcreate2(f.id(), path.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
-  H5Pclose(dapl);
-  H5Pclose(dcpl);
-  H5Sclose(space);
-  if (d < 0) throw OutputError(f.path() + ": cannot create " + path + fc::hdf5ErrorReason());
-  return d;
-}
-
-void appendRows(hid_t d, const Channel& c, const std::string& file, unsigned long long at,
-                unsigned long long rows, const double* data) {
-  std::vector<hsize_t> size{static_cast<hsize_t>(at + rows)}, start{static_cast<hsize_t>(at)},
-      count{static_cast<hsize_t>(rows)};
-  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
-                                        : c.rank1      ? std::vector<hsize_t>{}
-                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
-  for (hsize_t t : trailing) {
-    size.push_back(t);
-    start.push_back(0);
-    count.push_back(t);
-  }
-  const int rank = static_cast<int>(size.size());
-  bool ok = H5Dset_extent(d, size.data()) >= 0;
-  if (ok) {
-    const hid_t fspace = H5Dget_space(d);
-    const hid_t mspace = H5Screate_simple(rank, count.data(), nullptr);
-    ok = fspace >= 0 && mspace >= 0 &&
-         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0 &&
-         H5Dwrite(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) >= 0;
-    // Read the reason before H5Sclose: every HDF5 call clears the error stack, and a
-    // full disk was reported as "cannot write /bodies/p/ply_stress" without its errno.
-    const std::string reason = ok ? std::string() : fc::hdf5ErrorReason();
-    if (mspace >= 0) H5Sclose(mspace);
-    if (fspace >= 0) H5Sclose(fspace);
-    if (!ok) throw OutputError(file + ": cannot write /" + c.name + reason);
-  }
-  if (!ok) throw OutputError(file + ": cannot write /" + c.name + fc::hdf5ErrorReason());
-}
-
 // One attribute per log. HDF5 keeps attributes in the object header, which
 // holds at most 64 kB: a long log (the SAR with rigid trusses logs 3178 impacts
 // on hinge H23's stop, 472 kB) made the whole results file fail to write. The
@@ -218,94 +141,25 @@ std::string joined(const std::vector<std::string>& lines) {
   return s;
 }
 
-}  // namespace
-
-ResultsFileWriter::ResultsFileWriter(const std::string& path, const Model& model, long expected_rows)
-    : channels_(resultChannels(model)), file_(path) {
-  unsigned long long width = 0;
-  for (const Channel& c : channels_) width += c.columns;
-  block_rows_ = std::max(16ull, kBlockBytes / (8 * std::max(1ull, width)));
-  // Chunks no longer than the run, so that a short run's file stays small.
-  const unsigned long long chunk = std::max(1ull, std::min(block_rows_, static_cast<unsigned long long>(
-                                                                            std::max(1l, expected_rows))));
-  // The chunk indexes grow with the rows; HDF5's metadata cache (up to 32 MB
-  // by default) is capped so that memory stays bounded whatever the output step.
-  H5AC_cache_config_t mdc;
-  mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
-  if (H5Fget_mdc_config(file_.file().id(), &mdc) >= 0) {
-    mdc.set_initial_size = true;
-    mdc.initial_size = 1 << 20;
-    mdc.min_size = 1 << 20;
-    mdc.max_size = 4 << 20;
-    H5Fset_mdc_config(file_.file().id(), &mdc);
+void writeContactPeaks(fc::H5File& f, const Model& model, const RunSummary& r) {
+  const std::vector<int> contacts = model.contactElements();
+  if (contacts.empty() || r.peak_contact_force.size() != contacts.size()) return;
+  std::size_t worst = 0;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const std::string p = "/contacts/" + model.forces[static_cast<std::size_t>(contacts[k])].name + "/";
+    f.setAttribute(p + "force", "peak", r.peak_contact_force[k].value);
+    f.setAttribute(p + "force", "peak_time", r.peak_contact_force[k].time);
+    f.setAttribute(p + "penetration", "peak", r.peak_contact_penetration[k].value);
+    f.setAttribute(p + "penetration", "peak_time", r.peak_contact_penetration[k].time);
+    if (r.peak_contact_force[k].value > r.peak_contact_force[worst].value) worst = k;
   }
-  every_ = static_cast<unsigned long long>(std::max(1, model.stress_every));
-  for (const Channel& c : channels_) {
-    datasets_.push_back(createExtendible(file_.file(), c, chunk));
-    buffers_.emplace_back();
-    buffers_.back().reserve((c.decimated ? block_rows_ / every_ + 1 : block_rows_) * c.columns);
-  }
-  channel_rows_.assign(channels_.size(), 0);
-  skipped_.resize(channels_.size());
-  last_flush_ = std::chrono::steady_clock::now();
+  f.setAttribute("/", "contact_force_max", r.peak_contact_force[worst].value);
+  f.setAttribute("/", "contact_force_max_time", r.peak_contact_force[worst].time);
+  f.setAttribute("/", "contact_force_max_name", model.forces[static_cast<std::size_t>(contacts[worst])].name);
 }
 
-ResultsFileWriter::~ResultsFileWriter() {
-  for (hid_t d : datasets_)
-    if (d >= 0) H5Dclose(d);
-}
-
-void ResultsFileWriter::write(const Sample& s) {
-  const bool keep = (written_ + buffered_) % every_ == 0;  // this row's index, 0-based
-  for (std::size_t k = 0; k < channels_.size(); ++k) {
-    if (channels_[k].decimated && !keep) {
-      skipped_[k].resize(channels_[k].columns);
-      channels_[k].read(s, skipped_[k].data());
-      continue;
-    }
-    std::vector<double>& b = buffers_[k];
-    b.resize(b.size() + channels_[k].columns);
-    channels_[k].read(s, b.data() + b.size() - channels_[k].columns);
-  }
-  skipped_pending_ = !keep;
-  ++buffered_;
-  const bool due = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >
-                   kFlushSeconds;
-  if (buffered_ >= block_rows_ || due) writeBlock();
-}
-
-void ResultsFileWriter::writeBlock() {
-  // Each channel its own rows: the decimated ones fewer (none in most blocks).
-  for (std::size_t k = 0; k < channels_.size(); ++k) {
-    const unsigned long long rows = buffers_[k].size() / static_cast<unsigned long long>(channels_[k].columns);
-    if (rows > 0)
-      appendRows(datasets_[k], channels_[k], file_.temporaryPath(), channel_rows_[k], rows, buffers_[k].data());
-    channel_rows_[k] += rows;
-    buffers_[k].clear();
-  }
-  written_ += buffered_;
-  buffered_ = 0;
-  // What is on disk is a valid HDF5 file up to here (HDF5 1.10 has no
-  // single-writer journal: a flush is the consistency point).
-  if (H5Fflush(file_.file().id(), H5F_SCOPE_GLOBAL) < 0)
-    throw OutputError(file_.temporaryPath() + ": cannot flush" + fc::hdf5ErrorReason());
-  last_flush_ = std::chrono::steady_clock::now();
-}
-
-void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const std::string& inputs_sha256) {
-  // The final row always goes to the decimated fields too (the state the run ended in).
-  if (skipped_pending_) {
-    for (std::size_t k = 0; k < channels_.size(); ++k)
-      if (channels_[k].decimated) buffers_[k].insert(buffers_[k].end(), skipped_[k].begin(), skipped_[k].end());
-    skipped_pending_ = false;
-  }
-  writeBlock();
-  for (hid_t& d : datasets_) {
-    if (H5Dclose(d) < 0) throw OutputError(file_.temporaryPath() + ": cannot close a dataset" + fc::hdf5ErrorReason());
-    d = -1;
-  }
-  fc::H5File& f = file_.file();
-  fc::writeProvenance(f, "results/1", "mbs-run", inputs_sha256);
+// Stops' impacts per joint and the modes' peak energies per body.
+void writeImpactsAndModalPeaks(fc::H5File& f, const Model& model, const RunSummary& r) {
   // Impacts on stops: one row per impact (time, angle rate before and after,
   // impulse, energy dissipated), written even when there were none.
   for (std::size_t j = 0; j < model.joints.size() && j < r.limit_impacts.size(); ++j) {
@@ -328,6 +182,10 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
       f.writeIntVector(g + "/fixed_interface_modes", model.bodies[k].flex->fixed_interface_modes);
     }
   }
+}
+
+// Beam stations and the envelope of the recovered stresses.
+void writeStressFields(fc::H5File& f, const Model& model, const RunSummary& r) {
   // A beam's stations, where its ply stresses are recovered (body frame).
   for (const auto& body : model.bodies)
     if (body.stress && body.stress->stations.rows() > 0)
@@ -346,6 +204,10 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
       }
     }
   }
+}
+
+// Distances, margins, overshoots, latches and clearances (monitors/margins.h).
+void writeMargins(fc::H5File& f, const Model& model, const RunSummary& r) {
   // Contact monitor summary: the smallest distance of each pair and when.
   for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.smallest_distance.size(); ++k) {
     f.setAttribute("/" + distanceChannel(model, k), "minimum", r.smallest_distance[k].value);
@@ -459,7 +321,10 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
     f.setAttribute("/", "clearance_min_time", r.smallest_distance[best].time);
     f.setAttribute("/", "clearance_min_pair", distanceChannel(model, best).substr(std::string("distances/").size()));
   }
-  writeContactPeaks(f, model, r);
+}
+
+// The run's own figures as root attributes: cost, status, tolerances, peaks.
+void writeRunAttributes(fc::H5File& f, const Model& model, const RunSummary& r) {
   f.setAttribute("/", "cpu_seconds", r.cpu_seconds);
   f.setAttribute("/", "steps", r.steps);
   f.setAttribute("/", "rejected_steps", r.rejected_steps);
@@ -502,6 +367,163 @@ void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const st
   f.setAttribute("/", "warnings", joined(r.warnings));
   f.setAttribute("/", "events", joined(r.event_log));
   f.setAttribute("/", "integrator_switches", joined(r.integrator_log));
+}
+
+
+hid_t createExtendible(fc::H5File& f, const Channel& c, unsigned long long chunk_rows) {
+  const std::string path = "/" + c.name;
+  const std::size_t slash = path.rfind('/');
+  if (slash > 0) f.createGroup(path.substr(0, slash));
+  // (rows), (rows, columns) or (rows, dims...): the row dimension grows.
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{static_cast<hsize_t>(chunk_rows)};
+  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
+                                        : c.rank1      ? std::vector<hsize_t>{}
+                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
+  for (hsize_t d : trailing) {
+    dims.push_back(d);
+    maxdims.push_back(d);
+    chunk.push_back(std::max<hsize_t>(d, 1));
+  }
+  const int rank = static_cast<int>(dims.size());
+  const hid_t space = H5Screate_simple(rank, dims.data(), maxdims.data());
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, rank, chunk.data());
+  // Rows arrive in whole blocks, so no chunk cache is needed; HDF5's default
+  // (1 MB per dataset) would hold ~1 MB per channel for nothing.
+  const hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+  H5Pset_chunk_cache(dapl, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0, H5D_CHUNK_CACHE_W0_DEFAULT);
+  const hid_t d = H5Dcreate2(f.id(), path.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
+  H5Pclose(dapl);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  if (d < 0) throw OutputError(f.path() + ": cannot create " + path + fc::hdf5ErrorReason());
+  return d;
+}
+
+void appendRows(hid_t d, const Channel& c, const std::string& file, unsigned long long at,
+                unsigned long long rows, const double* data) {
+  std::vector<hsize_t> size{static_cast<hsize_t>(at + rows)}, start{static_cast<hsize_t>(at)},
+      count{static_cast<hsize_t>(rows)};
+  const std::vector<hsize_t> trailing = !c.dims.empty() ? c.dims
+                                        : c.rank1      ? std::vector<hsize_t>{}
+                                                       : std::vector<hsize_t>{static_cast<hsize_t>(c.columns)};
+  for (hsize_t t : trailing) {
+    size.push_back(t);
+    start.push_back(0);
+    count.push_back(t);
+  }
+  const int rank = static_cast<int>(size.size());
+  bool ok = H5Dset_extent(d, size.data()) >= 0;
+  if (ok) {
+    const hid_t fspace = H5Dget_space(d);
+    const hid_t mspace = H5Screate_simple(rank, count.data(), nullptr);
+    ok = fspace >= 0 && mspace >= 0 &&
+         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0 &&
+         H5Dwrite(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    // Read the reason before H5Sclose: every HDF5 call clears the error stack, and a
+    // full disk was reported as "cannot write /bodies/p/ply_stress" without its errno.
+    const std::string reason = ok ? std::string() : fc::hdf5ErrorReason();
+    if (mspace >= 0) H5Sclose(mspace);
+    if (fspace >= 0) H5Sclose(fspace);
+    if (!ok) throw OutputError(file + ": cannot write /" + c.name + reason);
+  }
+  if (!ok) throw OutputError(file + ": cannot write /" + c.name + fc::hdf5ErrorReason());
+}
+
+}  // namespace
+
+ResultsFileWriter::ResultsFileWriter(const std::string& path, const Model& model, long expected_rows)
+    : channels_(resultChannels(model)), file_(path) {
+  unsigned long long width = 0;
+  for (const Channel& c : channels_) width += c.columns;
+  block_rows_ = std::max(16ull, kBlockBytes / (8 * std::max(1ull, width)));
+  // Chunks no longer than the run, so that a short run's file stays small.
+  const unsigned long long chunk = std::max(1ull, std::min(block_rows_, static_cast<unsigned long long>(
+                                                                            std::max(1l, expected_rows))));
+  // The chunk indexes grow with the rows; HDF5's metadata cache (up to 32 MB
+  // by default) is capped so that memory stays bounded whatever the output step.
+  H5AC_cache_config_t mdc;
+  mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Fget_mdc_config(file_.file().id(), &mdc) >= 0) {
+    mdc.set_initial_size = true;
+    mdc.initial_size = 1 << 20;
+    mdc.min_size = 1 << 20;
+    mdc.max_size = 4 << 20;
+    H5Fset_mdc_config(file_.file().id(), &mdc);
+  }
+  every_ = static_cast<unsigned long long>(std::max(1, model.stress_every));
+  for (const Channel& c : channels_) {
+    datasets_.push_back(createExtendible(file_.file(), c, chunk));
+    buffers_.emplace_back();
+    buffers_.back().reserve((c.decimated ? block_rows_ / every_ + 1 : block_rows_) * c.columns);
+  }
+  channel_rows_.assign(channels_.size(), 0);
+  skipped_.resize(channels_.size());
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+ResultsFileWriter::~ResultsFileWriter() {
+  for (hid_t d : datasets_)
+    if (d >= 0) H5Dclose(d);
+}
+
+void ResultsFileWriter::write(const Sample& s) {
+  const bool keep = (written_ + buffered_) % every_ == 0;  // this row's index, 0-based
+  for (std::size_t k = 0; k < channels_.size(); ++k) {
+    if (channels_[k].decimated && !keep) {
+      skipped_[k].resize(channels_[k].columns);
+      channels_[k].read(s, skipped_[k].data());
+      continue;
+    }
+    std::vector<double>& b = buffers_[k];
+    b.resize(b.size() + channels_[k].columns);
+    channels_[k].read(s, b.data() + b.size() - channels_[k].columns);
+  }
+  skipped_pending_ = !keep;
+  ++buffered_;
+  const bool due = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count() >
+                   kFlushSeconds;
+  if (buffered_ >= block_rows_ || due) writeBlock();
+}
+
+void ResultsFileWriter::writeBlock() {
+  // Each channel its own rows: the decimated ones fewer (none in most blocks).
+  for (std::size_t k = 0; k < channels_.size(); ++k) {
+    const unsigned long long rows = buffers_[k].size() / static_cast<unsigned long long>(channels_[k].columns);
+    if (rows > 0)
+      appendRows(datasets_[k], channels_[k], file_.temporaryPath(), channel_rows_[k], rows, buffers_[k].data());
+    channel_rows_[k] += rows;
+    buffers_[k].clear();
+  }
+  written_ += buffered_;
+  buffered_ = 0;
+  // What is on disk is a valid HDF5 file up to here (HDF5 1.10 has no
+  // single-writer journal: a flush is the consistency point).
+  if (H5Fflush(file_.file().id(), H5F_SCOPE_GLOBAL) < 0)
+    throw OutputError(file_.temporaryPath() + ": cannot flush" + fc::hdf5ErrorReason());
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+void ResultsFileWriter::finish(const Model& model, const RunSummary& r, const std::string& inputs_sha256) {
+  // The final row always goes to the decimated fields too (the state the run ended in).
+  if (skipped_pending_) {
+    for (std::size_t k = 0; k < channels_.size(); ++k)
+      if (channels_[k].decimated) buffers_[k].insert(buffers_[k].end(), skipped_[k].begin(), skipped_[k].end());
+    skipped_pending_ = false;
+  }
+  writeBlock();
+  for (hid_t& d : datasets_) {
+    if (H5Dclose(d) < 0) throw OutputError(file_.temporaryPath() + ": cannot close a dataset" + fc::hdf5ErrorReason());
+    d = -1;
+  }
+  fc::H5File& f = file_.file();
+  fc::writeProvenance(f, "results/1", "mbs-run", inputs_sha256);
+  // The run's summaries, each a stage of its own (run_summary.h folds them).
+  writeImpactsAndModalPeaks(f, model, r);
+  writeStressFields(f, model, r);
+  writeMargins(f, model, r);
+  writeContactPeaks(f, model, r);
+  writeRunAttributes(f, model, r);
   try {
     file_.commit();
   } catch (const std::exception& e) {
