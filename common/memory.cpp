@@ -1,5 +1,7 @@
 #include "common/memory.h"
 
+#include <sys/mman.h>
+
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -113,9 +115,13 @@ std::string failedStage(const std::string& skip) {
 std::size_t lastFailedAllocation() { return g_failed_allocation; }
 
 void requireHeadroom(std::size_t bytes, const std::string& what) {
-  void* p = std::malloc(bytes);
-  if (!p) throw OutOfMemory(what + " needs about " + formatMegabytes(static_cast<double>(bytes) / 1048576.0) + " more");
-  std::free(p);
+  // An address-space reservation, not malloc: a freed malloc block this large
+  // raises glibc's dynamic mmap threshold, after which large buffers come from
+  // the heap and stay resident once freed (a run's peak memory grew by it).
+  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  if (p == MAP_FAILED)
+    throw OutOfMemory(what + " needs about " + formatMegabytes(static_cast<double>(bytes) / 1048576.0) + " more");
+  ::munmap(p, bytes);
 }
 
 std::string outOfMemoryMessage(const std::bad_alloc& e, const std::string& tool) {

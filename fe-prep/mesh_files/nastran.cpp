@@ -813,7 +813,7 @@ void Builder::readElements(const std::vector<const NastranCard*>& cards, Nastran
         if (std::count(s.g.begin(), s.g.end(), gid) > 1) k.fail(2 + j, "G" + std::to_string(j + 1), "a grid repeated in the element");
       }
       const std::size_t th = 2 + nn, zo = 3 + nn;
-      k.mustBeBlank(zo, "ZOFFS", "offset shell_elements_ (ZOFFS) are not supported; expected blank or 0");
+      k.mustBeBlank(zo, "ZOFFS", "offset shells (ZOFFS) are not supported; expected blank or 0");
       for (std::size_t j = 10; j < 11 + nn; ++j)
         if (!k.blank(j)) k.fail(j, j == 10 ? "TFLAG" : "T" + std::to_string(j - 10), "element grid thicknesses are not supported; expected blank (the property's thickness)");
       const Eigen::Vector3d normal = nn == 3 ? Eigen::Vector3d((x[1] - x[0]).cross(x[2] - x[0]))
