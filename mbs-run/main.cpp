@@ -188,11 +188,7 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
     // One line: the joint that went furthest past a stop or latch (each
     // joint's own figure and angle range are attributes of its angle).
     int worst = -1;
-    double largest = -1.0;
-    for (std::size_t j = 0; j < m.joints.size() && r.samples > 0; ++j) {
-      const double past = mg.overshoot(m, static_cast<int>(j));
-      if (past > largest) largest = past, worst = static_cast<int>(j);
-    }
+    const double largest = mg.largestOvershoot(m, &worst);
     if (worst >= 0)
       std::printf("  largest overshoot past a stop or latch %.3g rad (joint %s, angle from %.6g to %.6g rad)\n", largest,
                   m.joints[worst].name.c_str(), mg.joints[worst].angle_min, mg.joints[worst].angle_max);

@@ -94,6 +94,17 @@ double Margins::overshoot(const Model& m, int joint) const {
   return past;
 }
 
+double Margins::largestOvershoot(const Model& m, int* joint) const {
+  double largest = -1.0;
+  *joint = -1;
+  if (rows_ == 0) return largest;
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const double past = overshoot(m, static_cast<int>(j));
+    if (past > largest) largest = past, *joint = static_cast<int>(j);
+  }
+  return largest;
+}
+
 Margins::Latch latchArrival(System& sys, const Model& m, int joint, double angle, double t, const Eigen::VectorXd& y) {
   std::vector<BodyPose> P;
   sys.poses(y, P);

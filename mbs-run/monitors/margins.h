@@ -61,6 +61,9 @@ struct Margins {
   // and past the crossing angle of each latch on it, in the direction it
   // arrived [rad]; 0 when it never did, -1 for a joint with neither.
   double overshoot(const Model& m, int joint) const;
+  // The largest overshoot over the joints that have stops or latches, and
+  // which joint (-1 without any, or before any output row).
+  double largestOvershoot(const Model& m, int* joint) const;
 
  private:
   long rows_ = 0;  // output rows observed

@@ -236,13 +236,8 @@ void writeMargins(fc::H5File& f, const Model& model, const RunSummary& r) {
     }
   }
   {
-    // The largest overshoot past a stop or latch over the joints that have one.
     int worst = -1;
-    double largest = -1.0;
-    for (std::size_t j = 0; j < model.joints.size() && r.samples > 0; ++j) {
-      const double past = mg.overshoot(model, static_cast<int>(j));
-      if (past > largest) largest = past, worst = static_cast<int>(j);
-    }
+    const double largest = mg.largestOvershoot(model, &worst);
     if (worst >= 0) {
       f.setAttribute("/", "overshoot_max", largest);
       f.setAttribute("/", "overshoot_max_joint", model.joints[static_cast<std::size_t>(worst)].name);
