@@ -10,13 +10,16 @@ namespace fc::mbs {
 
 using Eigen::VectorXd;
 
+ConstantBlock::ConstantBlock(const Eigen::MatrixXd& D_) : D(D_), llt(D_) {}
+
 Eigen::MatrixXd BlockDiagonal::dense(std::size_t b) const {
   if (!arrow(b)) return block[b];
   const int n = dim(b), r = int(block[b].rows());
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
   D.topRows(r) = block[b];
   D.bottomLeftCorner(n - r, r) = block[b].rightCols(n - r).transpose();
-  D.bottomRightCorner(n - r, n - r).diagonal() = diagonal[b];
+  if (const ConstantBlock* cb = constantBlock(b)) D.bottomRightCorner(n - r, n - r) = cb->D;
+  else D.bottomRightCorner(n - r, n - r).diagonal() = diagonal[b];
   return D;
 }
 
@@ -33,7 +36,8 @@ void BlockDiagonal::multiply(const VectorXd& x, VectorXd& y) const {
     const auto xf = x.segment(offset[b] + r, n - r);
     const auto C = block[b].rightCols(n - r);
     y.segment(offset[b], r).noalias() = block[b] * x.segment(offset[b], n);
-    y.segment(offset[b] + r, n - r) = diagonal[b].cwiseProduct(xf);
+    if (const ConstantBlock* cb = constantBlock(b)) y.segment(offset[b] + r, n - r).noalias() = cb->D * xf;
+    else y.segment(offset[b] + r, n - r) = diagonal[b].cwiseProduct(xf);
     y.segment(offset[b] + r, n - r).noalias() += C.transpose() * xr;
   }
 }
@@ -48,6 +52,9 @@ SparseMatrixd BlockDiagonal::toSparse() const {
         if (arrow(b) && c >= r) t.emplace_back(o + int(c), o + int(i), block[b](i, c));
       }
     for (Eigen::Index k = 0; k < diagonal[b].size(); ++k) t.emplace_back(o + r + int(k), o + r + int(k), diagonal[b][k]);
+    if (const ConstantBlock* cb = constantBlock(b))
+      for (Eigen::Index c = 0; c < cb->D.cols(); ++c)
+        for (Eigen::Index i = 0; i < cb->D.rows(); ++i) t.emplace_back(o + r + int(i), o + r + int(c), cb->D(i, c));
   }
   SparseMatrixd M(size, size);
   M.setFromTriplets(t.begin(), t.end());
@@ -63,6 +70,17 @@ bool BlockFactor::compute(const BlockDiagonal& M, std::size_t b) {
   }
   r_ = int(B.rows());
   const int nf = M.dim(b) - r_;
+  constant_.reset();
+  if (b < M.constant.size() && M.constant[b]) {
+    constant_ = M.constant[b];
+    if (!constant_->ok()) return false;
+    // E = C L_D^-T, i.e. E^T = L_D^-1 C^T.
+    E_ = constant_->llt.matrixL().solve(B.rightCols(nf).transpose()).transpose();
+    Eigen::MatrixXd S = B.leftCols(r_);
+    S.noalias() -= E_ * E_.transpose();
+    llt_.compute(S);
+    return llt_.info() == Eigen::Success;
+  }
   const Eigen::VectorXd& d = M.diagonal[b];
   if (!(d.minCoeff() > 0.0)) return false;
   dh_ = d.cwiseSqrt();
@@ -79,7 +97,8 @@ void BlockFactor::solveF(Eigen::Ref<Eigen::MatrixXd> X) const {
     return;
   }
   const Eigen::Index nf = X.rows() - r_;
-  X.bottomRows(nf) = dh_.cwiseInverse().asDiagonal() * X.bottomRows(nf);
+  if (constant_) constant_->llt.matrixL().solveInPlace(X.bottomRows(nf));
+  else X.bottomRows(nf) = dh_.cwiseInverse().asDiagonal() * X.bottomRows(nf);
   X.topRows(r_).noalias() -= E_ * X.bottomRows(nf);
   llt_.matrixL().solveInPlace(X.topRows(r_));
 }
@@ -93,7 +112,12 @@ void BlockFactor::solveFT(Eigen::Ref<Eigen::VectorXd> x) const {
   auto xr = x.head(r_);
   llt_.matrixU().solveInPlace(xr);
   x.tail(nf).noalias() -= E_.transpose() * xr;
-  x.tail(nf) = x.tail(nf).cwiseQuotient(dh_);
+  if (constant_) {
+    auto xf = x.tail(nf);
+    constant_->llt.matrixU().solveInPlace(xf);
+  } else {
+    x.tail(nf) = x.tail(nf).cwiseQuotient(dh_);
+  }
 }
 
 BlockDiagonal BlockDiagonal::fromSparse(const SparseMatrixd& M) {

@@ -33,6 +33,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include <memory>
 #include <vector>
 
 #include "mbs-run/model/al_method.h"
@@ -48,15 +49,31 @@ using SparseMatrixd = Eigen::SparseMatrix<double>;
 // block is diag(diagonal[b]) (n - r entries), zero off the diagonal. A
 // floating-frame flexible body with mass-normalised modes has that structure
 // (r = 6, modal mass diagonal): stored, multiplied and factorised in O(n)
-// instead of O(n^2) and O(n^3) (BlockFactor).
+// instead of O(n^2) and O(n^3) (BlockFactor). When the modal mass is constant
+// but not diagonal to rounding (modes orthonormal only to the eigensolver's
+// precision), the trailing block is that constant dense matrix, factorised
+// once when the body is loaded (ConstantBlock): an evaluation then costs the
+// r x (n - r) coupling's triangular solve, O(r n^2), not an O(n^3) Cholesky
+// of the whole block.
+struct ConstantBlock {
+  explicit ConstantBlock(const Eigen::MatrixXd& D);
+  Eigen::MatrixXd D;
+  Eigen::LLT<Eigen::MatrixXd> llt;  // D = L L^T
+  bool ok() const { return llt.info() == Eigen::Success; }
+};
+
 struct BlockDiagonal {
   int size = 0;
   std::vector<int> offset;
   std::vector<Eigen::MatrixXd> block;
   std::vector<Eigen::VectorXd> diagonal;  // one per block; empty for a dense block
+  // Optional, one per block (may be shorter than block): a constant dense
+  // trailing block of an arrow block whose diagonal[b] is empty.
+  std::vector<std::shared_ptr<const ConstantBlock>> constant;
 
   int dim(std::size_t b) const { return int(block[b].cols()); }
-  bool arrow(std::size_t b) const { return diagonal[b].size() > 0; }
+  const ConstantBlock* constantBlock(std::size_t b) const { return b < constant.size() ? constant[b].get() : nullptr; }
+  bool arrow(std::size_t b) const { return diagonal[b].size() > 0 || constantBlock(b) != nullptr; }
   // The whole block b, dense.
   Eigen::MatrixXd dense(std::size_t b) const;
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -71,7 +88,10 @@ struct BlockDiagonal {
 // Dense block: F = L, its Cholesky factor. Arrow block [A C; C^T D]:
 //   F = [Ls  C D^-1/2; 0  D^1/2],  Ls Ls^T = A - C D^-1 C^T
 // (the Schur complement on the small r x r block), so F^-1 and F^-T cost
-// O(n r) and the factorisation O(n r^2).
+// O(n r) and the factorisation O(n r^2). With a constant dense D = L_D L_D^T
+// (ConstantBlock), F = [Ls  C L_D^-T; 0  L_D]: F^-1 and F^-T cost O(n^2) per
+// column (triangular solves with the constant L_D) and the factorisation
+// O(r n^2).
 class BlockFactor {
  public:
   bool compute(const BlockDiagonal& M, std::size_t b);  // false: not positive definite
@@ -81,8 +101,9 @@ class BlockFactor {
  private:
   int r_ = 0;  // leading rows of an arrow block; 0 for a dense block
   Eigen::LLT<Eigen::MatrixXd> llt_;  // of the block, or of the arrow's Schur complement
-  Eigen::MatrixXd E_;                // C D^-1/2 (r x (n - r))
-  Eigen::VectorXd dh_;               // D^1/2
+  Eigen::MatrixXd E_;                // C D^-1/2 (r x (n - r)), or C L_D^-T
+  Eigen::VectorXd dh_;               // D^1/2 (diagonal D)
+  std::shared_ptr<const ConstantBlock> constant_;  // dense constant D, else null
 };
 
 struct AlResult {

@@ -41,7 +41,12 @@ System::System(const Model& model) : model_(model) {
   // off-diagonal entries it drops are below kDiagonalTolerance of the
   // diagonal, i.e. rounding of the same order as the solve's own.
   constexpr double kDiagonalTolerance = 1e-12;
+  // Otherwise (e.g. modes orthonormal only to the eigensolver's ~1e-10) the
+  // block is still an arrow block, with the constant dense modal mass
+  // factorised here once (ConstantBlock) instead of the whole (6 + nm)^2
+  // block at every evaluation.
   modal_mass_.resize(model.bodies.size());
+  modal_block_.resize(model.bodies.size());
   for (std::size_t k = 0; k < model.bodies.size(); ++k) {
     const Body& b = model.bodies[k];
     if (b.fixed || !b.flex || b.modes == 0) continue;
@@ -49,7 +54,12 @@ System::System(const Model& model) : model_(model) {
     const Eigen::VectorXd d = Mff.diagonal();
     Eigen::MatrixXd off = Mff;
     off.diagonal().setZero();
-    if (d.minCoeff() > 0.0 && off.cwiseAbs().maxCoeff() <= kDiagonalTolerance * d.maxCoeff()) modal_mass_[k] = d;
+    if (d.minCoeff() > 0.0 && off.cwiseAbs().maxCoeff() <= kDiagonalTolerance * d.maxCoeff()) {
+      modal_mass_[k] = d;
+      continue;
+    }
+    auto cb = std::make_shared<const ConstantBlock>(Mff);
+    if (cb->ok()) modal_block_[k] = std::move(cb);  // else the dense block, whose factorisation reports it
   }
 }
 
@@ -193,13 +203,16 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
     if (mass_.block.size() <= nb) {
       mass_.block.emplace_back();
       mass_.diagonal.emplace_back();
+      mass_.constant.emplace_back();
     }
     mass_.offset.push_back(b.dof_index);
+    mass_.constant[nb] = b.flex ? modal_block_[k] : nullptr;
     Eigen::MatrixXd& Mb = mass_.block[nb];
     Eigen::VectorXd& Db = mass_.diagonal[nb++];
-    if (b.flex && modal_mass_[k].size() > 0) {
-      // Floating frame of reference, modal mass diagonal: the arrow block
-      // (the six rigid rows and the constant modal diagonal), O(modes).
+    if (b.flex && (modal_mass_[k].size() > 0 || modal_block_[k])) {
+      // Floating frame of reference: the arrow block (the six rigid rows and
+      // the constant modal block, diagonal or factorised once), O(modes) to
+      // assemble.
       FlexibleInertiaRows fi = flexibleInertiaRows(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w,
                                                    b.flex->nodal.get());
       Mb.swap(fi.top);
@@ -221,6 +234,7 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
   }
   mass_.block.resize(nb);
   mass_.diagonal.resize(nb);
+  mass_.constant.resize(nb);
 }
 
 void System::factorize() {

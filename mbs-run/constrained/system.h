@@ -13,6 +13,7 @@
 #include <Eigen/Sparse>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -203,6 +204,9 @@ class System {
   // Per body: the diagonal of its constant modal mass block when that block is
   // diagonal (mass-normalised modes), else empty (the body's block is dense).
   std::vector<Eigen::VectorXd> modal_mass_;
+  // Per body: its constant modal mass block factorised once when that block
+  // is not diagonal to rounding, else null.
+  std::vector<std::shared_ptr<const ConstantBlock>> modal_block_;
   SparseMatrixd Phi_v_;
   std::vector<ConstraintRows> joint_rows_;  // rows of each joint, from the last assembly
   Eigen::VectorXd phi_, phit_, c_, lambda_, Qv_;
