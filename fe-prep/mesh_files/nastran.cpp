@@ -947,10 +947,8 @@ void Builder::numberNodesAndElements(NastranModel& out) {
     if (s.g.size() == 4) add(s.g[0], s.g[2], s.g[3]);  // the 1-3 diagonal, as the .msh reader
     // Each triangle must have a frame (not degenerate, the axis not along its normal).
     for (std::size_t t = mesh.triangles.size() - (s.g.size() - 2); t < mesh.triangles.size(); ++t) {
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[t][static_cast<std::size_t>(i)]);
       try {
-        fe::shellFrame(xyz, s.axis);
+        fe::shellFrame(triangleXyz(mesh, static_cast<long>(t)), s.axis);
       } catch (const std::invalid_argument& e) {
         failAt(s.card->file, s.card->line, s.card->name + " " + firstField(*s.card),
                std::string(e.what()) + (s.g.size() == 4 ? " (in one of the two triangles on the G1-G3 diagonal)" : "") +
@@ -1212,9 +1210,7 @@ void applyNastranDeck(BodySpec& spec) {
         p = r.shell_property;
         p.name = r.name;
       }
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[e][static_cast<std::size_t>(i)]);
-      mesh.triangle_axis[e] = referenceAxisAt(r.axis, xyz.colwise().mean());
+      mesh.triangle_axis[e] = regionAxisOnTriangle(r, mesh, static_cast<long>(e));
     }
     for (std::size_t e = 0; e < mesh.beams.size(); ++e) {
       if (mesh.beam_group[e] != grp) continue;
