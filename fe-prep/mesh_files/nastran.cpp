@@ -61,12 +61,14 @@ struct Reader {
 
   void addRow(const std::string& file, int line, const std::vector<std::string>& data, bool large) {
     NastranCard& c = cards.back();
+    if (file != (c.other_files.empty() ? c.file : c.other_files.back().second))
+      c.other_files.emplace_back(c.fields.size(), file);
     if (!large && pending_large % 2 == 1) {
       // A small-field continuation after an unpaired large line: the row's other half is blank.
-      for (int k = 0; k < 4; ++k) c.fields.push_back({"", file, line});
+      for (int k = 0; k < 4; ++k) c.fields.push_back({"", line});
       pending_large = 0;
     }
-    for (const auto& d : data) c.fields.push_back({upper(trim(d)), file, line});
+    for (const auto& d : data) c.fields.push_back({upper(trim(d)), line});
     if (large) ++pending_large;
   }
 
@@ -77,26 +79,32 @@ struct Reader {
       if (from_file.empty()) throw InputError(path, 0, 0, "", "cannot read the Nastran deck '" + path + "'");
       failAt(from_file, from_line, "INCLUDE", "cannot read the included file '" + path + "'");
     }
-    std::vector<std::string> lines;
-    for (std::string l; std::getline(in, l);) lines.push_back(l);
-    // A deck with an executive and case control section starts its bulk data after BEGIN BULK.
-    std::size_t start = 0;
-    if (depth == 0)
-      for (std::size_t i = 0; i < lines.size(); ++i) {
-        std::string u = upper(trim(lines[i]));
+    // A deck with an executive and case control section starts its bulk data
+    // after BEGIN BULK: found by a first pass, the lines are then read one at a
+    // time (never the whole file held).
+    int start = 0;
+    std::string l;
+    if (depth == 0) {
+      int ln = 0;
+      while (std::getline(in, l)) {
+        ++ln;
+        std::string u = upper(trim(l));
         u.erase(std::remove(u.begin(), u.end(), ' '), u.end());
         if (u.rfind("BEGINBULK", 0) == 0) {
-          start = i + 1;
+          start = ln;
           break;
         }
       }
-    for (std::size_t i = start; i < lines.size() && !done; ++i) {
-      const int ln = static_cast<int>(i + 1);
-      std::string l = lines[i];
+      in.clear();
+      in.seekg(0);
+    }
+    std::vector<std::string> data;
+    for (int ln = 1; !done && std::getline(in, l); ++ln) {
+      if (ln <= start) continue;
       if (!l.empty() && l.back() == '\r') l.pop_back();
       const auto dollar = l.find('$');
-      if (dollar != std::string::npos) l = l.substr(0, dollar);
-      if (trim(l).empty()) continue;
+      if (dollar != std::string::npos) l.resize(dollar);
+      if (l.find_first_not_of(" \t\r\n") == std::string::npos) continue;
       const std::string head = upper(trim(l));
       if (head.rfind("ENDDATA", 0) == 0) {
         done = true;
@@ -124,10 +132,10 @@ struct Reader {
                  "a free-field line has " + std::to_string(tok.size()) + " fields; expected at most " +
                      std::to_string(per + 2) + " (field 1, " + std::to_string(per) +
                      " data fields and the continuation field), the rest on a continuation line");
-        std::vector<std::string> data(per);
+        data.assign(per, std::string());
         for (std::size_t k = 1; k < tok.size() && k <= per; ++k) data[k - 1] = tok[k];
         if (!cont) {
-          cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}});
+          cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}, {}});
           pending_large = 0;
         } else if (cards.empty()) {
           failAt(path, ln, "continuation", "a continuation line with no card before it");
@@ -135,18 +143,18 @@ struct Reader {
         addRow(path, ln, data, large);
         continue;
       }
-      l = expandTabs(l);
+      if (l.find('\t') != std::string::npos) l = expandTabs(l);
       const std::string f1 = upper(trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
       const bool cont = f1.empty() || f1[0] == '+' || f1[0] == '*';
       const bool large = cont ? (!f1.empty() && f1[0] == '*') : (!f1.empty() && f1.back() == '*');
       if (!cont) {
-        cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}});
+        cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}, {}});
         pending_large = 0;
       } else if (cards.empty()) {
         failAt(path, ln, "continuation", "a continuation line with no card before it");
       }
       const std::size_t width = large ? 16 : 8, per = large ? 4 : 8;
-      std::vector<std::string> data(per);
+      data.assign(per, std::string());
       for (std::size_t k = 0; k < per; ++k) {
         const std::size_t b = 8 + k * width;
         if (b < l.size()) data[k] = l.substr(b, std::min(width, l.size() - b));
@@ -170,10 +178,13 @@ struct Card {
   const NastranCard& c;
   std::string id;  // "GRID 12" for messages
 
-  std::string text(std::size_t i) const { return i < c.fields.size() ? c.fields[i].text : std::string(); }
+  const std::string& text(std::size_t i) const {
+    static const std::string empty;
+    return i < c.fields.size() ? c.fields[i].text : empty;
+  }
   bool blank(std::size_t i) const { return text(i).empty(); }
   int lineOf(std::size_t i) const { return i < c.fields.size() ? c.fields[i].line : c.line; }
-  const std::string& fileOf(std::size_t i) const { return i < c.fields.size() ? c.fields[i].file : c.file; }
+  const std::string& fileOf(std::size_t i) const { return c.fileOf(i); }
 
   [[noreturn]] void fail(std::size_t i, const std::string& name, const std::string& message) const {
     failAt(fileOf(i), lineOf(i), c.name + (id.empty() ? "" : " " + id) + ", " + fieldLabel(i) + " (" + name + ")",
@@ -1155,6 +1166,13 @@ SectionMatrices boxSection(double W, double H, double t1, double t2, double E, d
   s.M.setZero();
   s.M.diagonal() << rho * A, rho * A, rho * A, rho * (Iy + Iz), rho * Iy, rho * Iz;
   return s;
+}
+
+const std::string& NastranCard::fileOf(std::size_t field) const {
+  const std::string* f = &file;
+  for (const auto& [first, other] : other_files)
+    if (first <= field) f = &other;
+  return *f;
 }
 
 std::vector<NastranCard> readNastranCards(const std::string& path) {
