@@ -212,9 +212,10 @@ void BM_ImportSlab(benchmark::State& state) {
   state.counters["write_MB"] = peakMb();
   std::filesystem::remove_all(L.dir);
 }
-// 57, 129, 407 cells: 2.0e4, 1.0e5, 1.0e6 DOF; free, then Craig-Bampton.
+// 57, 129, 235, 407 cells: 2.0e4, 1.0e5, 3.3e5, 1.0e6 DOF; free, then Craig-Bampton.
 BENCHMARK(BM_ImportSlab)
-    ->Args({57, 0})->Args({57, 1})->Args({129, 0})->Args({129, 1})->Args({407, 0})->Args({407, 1})
+    ->Args({57, 0})->Args({57, 1})->Args({129, 0})->Args({129, 1})->Args({235, 0})->Args({235, 1})
+    ->Args({407, 0})->Args({407, 1})
     ->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
