@@ -16,13 +16,28 @@ Eigen::Vector3d referenceAxisAt(const MaterialAxis& axis, const Eigen::Vector3d&
   return axis.direction.cross(radial).normalized();
 }
 
-namespace {
-
 Eigen::Matrix3d triangleXyz(const Mesh& mesh, long e) {
   Eigen::Matrix3d xyz;
   for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[static_cast<std::size_t>(e)][static_cast<std::size_t>(i)]);
   return xyz;
 }
+
+Eigen::Vector3d regionAxisOnTriangle(const RegionSpec& r, const Mesh& mesh, long e) {
+  const Eigen::Matrix3d xyz = triangleXyz(mesh, e);
+  const Eigen::Vector3d c = xyz.colwise().mean();
+  Eigen::Vector3d a;
+  try {
+    a = referenceAxisAt(r.axis, c);
+    fe::shellFrame(xyz, a);  // the axis must not be normal to the element
+  } catch (const std::invalid_argument& ex) {
+    r.node.fail("region '" + r.name + "': the fibre reference axis is undefined on the triangle at (" +
+                std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "): " +
+                ex.what() + "; choose an axis: that is not normal to the surface there");
+  }
+  return a;
+}
+
+namespace {
 
 void legacyProperties(const BodySpec& spec, Mesh& mesh) {
   const long nt = static_cast<long>(mesh.triangles.size()), nb = static_cast<long>(mesh.beams.size());
@@ -84,19 +99,8 @@ void assignElementProperties(const BodySpec& spec, Mesh& mesh) {
     if (!r->shell)
       r->node.fail("region '" + r->name + "' is a beam region but its physical group has surface elements; "
                    "expected shell: {...} for a surface group");
-    const Eigen::Matrix3d xyz = triangleXyz(mesh, e);
-    const Eigen::Vector3d c = xyz.colwise().mean();
-    Eigen::Vector3d a;
-    try {
-      a = referenceAxisAt(r->axis, c);
-      fe::shellFrame(xyz, a);  // the axis must not be normal to the element
-    } catch (const std::invalid_argument& ex) {
-      r->node.fail("region '" + r->name + "': the fibre reference axis is undefined on the triangle at (" +
-                   std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + "): " +
-                   ex.what() + "; choose an axis: that is not normal to the surface there");
-    }
     mesh.triangle_property[static_cast<std::size_t>(e)] = shell_of[static_cast<std::size_t>(grp)];
-    mesh.triangle_axis[static_cast<std::size_t>(e)] = a;
+    mesh.triangle_axis[static_cast<std::size_t>(e)] = regionAxisOnTriangle(*r, mesh, e);
   }
   mesh.beam_property.resize(static_cast<std::size_t>(nb));
   mesh.beam_x2.resize(static_cast<std::size_t>(nb));

@@ -15,6 +15,16 @@ namespace fc::feprep {
 // radial the point's offset from the axis).
 Eigen::Vector3d referenceAxisAt(const MaterialAxis& axis, const Eigen::Vector3d& point);
 
+// The three nodes' coordinates of triangle e, one row each.
+Eigen::Matrix3d triangleXyz(const Mesh& mesh, long e);
+
+// Shell region r's fibre reference axis on triangle e: referenceAxisAt the
+// triangle's centroid, checked to give the element a frame (fe::shellFrame:
+// defined there and not normal to the element); an InputError at the region
+// otherwise. The one projection of a region's axis, for mesh files and for the
+// regions that replace a Nastran deck's properties.
+Eigen::Vector3d regionAxisOnTriangle(const RegionSpec& r, const Mesh& mesh, long e);
+
 // Fills mesh.shell_properties, beam_properties, triangle_property,
 // triangle_axis, beam_property, beam_x2 and point_masses. `shell:` bodies: one
 // property, axis body x; `beam:` bodies: one section, x2 body y (the previous

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <string>
 
+#include "common/flexbody.h"
 #include "common/input.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
@@ -44,27 +45,42 @@ struct Lattice {
   long dof = 0, nnz = 0;
 };
 
-// Writes the lattice of n^3 cells (cell 0.01 m) into a fresh folder.
-Lattice writeLattice(int n) {
+// Writes the lattice of n^3 cells (cell 0.01 m) into a fresh folder; with
+// `layers` > 0, a slab of n x n x layers cells (a shell-like matrix: its
+// factorisation fills in as a plate's), whose node table is an .inp with two
+// node sets of 10 nodes each at opposite corners of its edges x = 0 and x = n
+// (PADA, PADB: the distributing interfaces of BM_ImportSlab).
+Lattice writeLattice(int n, int layers = 0) {
   Lattice L;
-  L.dir = (std::filesystem::temp_directory_path() / ("flexcomp_bench_import_" + std::to_string(n))).string();
+  L.dir = (std::filesystem::temp_directory_path() /
+           ("flexcomp_bench_import_" + std::to_string(n) + "_" + std::to_string(layers))).string();
   std::filesystem::remove_all(L.dir);
   std::filesystem::create_directories(L.dir);
-  const int m = n + 1;
-  const long nodes = static_cast<long>(m) * m * m;
+  const int m = n + 1, mz = layers > 0 ? layers + 1 : m;
+  const long nodes = static_cast<long>(m) * m * mz;
   L.dof = 3 * nodes;
   auto id = [&](int i, int j, int k) { return (static_cast<long>(k) * m + j) * m + i; };
   const double h = 0.01;
   {
-    FILE* t = std::fopen((L.dir + "/nodes.txt").c_str(), "w");
+    FILE* t = std::fopen((L.dir + (layers > 0 ? "/nodes.inp" : "/nodes.txt")).c_str(), "w");
     FILE* d = std::fopen((L.dir + "/dofs.txt").c_str(), "w");
-    for (int k = 0; k < m; ++k)
+    if (layers > 0) std::fprintf(t, "*NODE\n");
+    for (int k = 0; k < mz; ++k)
       for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
           const long a = id(i, j, k) + 1;
-          std::fprintf(t, "%ld %.17g %.17g %.17g\n", a, h * i, h * j, h * k);
+          std::fprintf(t, layers > 0 ? "%ld, %.17g, %.17g, %.17g\n" : "%ld %.17g %.17g %.17g\n", a, h * i, h * j, h * k);
           std::fprintf(d, "%ld 1\n%ld 2\n%ld 3\n", a, a, a);
         }
+    if (layers > 0)
+      for (int side = 0; side < 2; ++side) {
+        std::fprintf(t, "*NSET, NSET=%s\n", side == 0 ? "PADA" : "PADB");
+        for (int k = 0; k < mz; ++k)
+          for (int jj = 0; jj < 5; ++jj) {
+            const int i = side == 0 ? 0 : m - 1, j = side == 0 ? jj : m - 1 - jj;
+            std::fprintf(t, "%ld\n", id(i, j, k) + 1);
+          }
+      }
     std::fclose(t);
     std::fclose(d);
   }
@@ -77,7 +93,7 @@ Lattice writeLattice(int n) {
       std::fprintf(f, "%%%%MatrixMarket matrix coordinate real symmetric\n%ld %ld %ld\n", L.dof, L.dof, L.nnz);
     }
     long count = 0;
-    for (int k = 0; k < m; ++k)
+    for (int k = 0; k < mz; ++k)
       for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
           const long a = id(i, j, k);
@@ -87,7 +103,7 @@ Lattice writeLattice(int n) {
               for (int di = -1; di <= 1; ++di) {
                 if (!di && !dj && !dk) continue;
                 const int i2 = i + di, j2 = j + dj, k2 = k + dk;
-                if (i2 < 0 || j2 < 0 || k2 < 0 || i2 >= m || j2 >= m || k2 >= m) continue;
+                if (i2 < 0 || j2 < 0 || k2 < 0 || i2 >= m || j2 >= m || k2 >= mz) continue;
                 const double len = h * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk));
                 const double e[3] = {h * di / len, h * dj / len, h * dk / len};
                 const double kk = 1e6 * h / len;
@@ -117,9 +133,10 @@ Lattice writeLattice(int n) {
   return L;
 }
 
-std::string yaml(const Lattice& L) {
+std::string yaml(const Lattice& L, bool slab = false) {
   return "body:\n  name: lattice\n  matrices: {format: matrix_market, stiffness: " + L.dir + "/k.mtx, mass: " + L.dir +
-         "/m.mtx, dofs: " + L.dir + "/dofs.txt, model: " + L.dir + "/nodes.txt}\n  units: m-kg-s\n  modes: 10\n";
+         "/m.mtx, dofs: " + L.dir + (slab ? "/dofs.txt, model: " + L.dir + "/nodes.inp}" : "/dofs.txt, model: " + L.dir + "/nodes.txt}") +
+         "\n  units: m-kg-s\n  modes: 10\n";
 }
 
 void BM_ImportRead(benchmark::State& state) {
@@ -160,6 +177,46 @@ void BM_ImportBody(benchmark::State& state) {
 }
 // n = 15, 21, 32: 1.2e4, 3.2e4, 1.1e5 DOF.
 BENCHMARK(BM_ImportBody)->Arg(15)->Arg(21)->Arg(32)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+// The slab's whole body, free (10 modes) and by Craig-Bampton with two
+// distributing interfaces (PADA, PADB, clamped; 10 fixed-interface modes):
+// the 1e6-DOF imported pair read and reduced end to end. Arguments: cells
+// along x and y (one layer through the thickness), then 0 free, 1 Craig-Bampton.
+void BM_ImportSlab(benchmark::State& state) {
+  const bool cb = state.range(1) != 0;
+  const Lattice L = writeLattice(static_cast<int>(state.range(0)), 1);
+  std::string y = yaml(L, true);
+  if (cb)
+    y += "  interfaces:\n    a: {point: [0, 0, 0], coupling: distributing, nodes: {edge: PADA}}\n"
+         "    b: {point: [" + std::to_string(0.01 * static_cast<double>(state.range(0))) + ", " +
+         std::to_string(0.01 * static_cast<double>(state.range(0))) + ", 0], coupling: distributing, nodes: {edge: PADB}}\n"
+         "  reference: {clamp: [a, b]}\n  reduction: craig_bampton\n";
+  const fc::feprep::BodySpec spec = fc::feprep::parseBodySpec(fc::InputNode::loadString(y, "bench"));
+  fc::feprep::BuildOptions opt;
+  opt.quiet = true;
+  fc::feprep::BuildResult r;
+  double write_cpu = 0.0;
+  for (auto _ : state) {
+    r = fc::feprep::buildFlexBody(PETSC_COMM_WORLD, spec, opt);
+    const double c0 = cpuSeconds();
+    fc::writeFlexBody(L.dir + "/slab.h5", r.body, fc::computeInertiaInvariants(r.body), fc::Provenance{});
+    write_cpu = cpuSeconds() - c0;
+  }
+  state.counters["dof"] = static_cast<double>(L.dof);
+  state.counters["nnz"] = static_cast<double>(L.nnz);
+  for (const auto& s : r.stages) {
+    state.counters[s.stage + "_cpu_s"] = s.cpu_seconds;
+    state.counters[s.stage + "_MB"] = s.peak_rss_mb;
+  }
+  state.counters["write_cpu_s"] = write_cpu;
+  state.counters["write_MB"] = peakMb();
+  std::filesystem::remove_all(L.dir);
+}
+// 57, 129, 235, 407 cells: 2.0e4, 1.0e5, 3.3e5, 1.0e6 DOF; free, then Craig-Bampton.
+BENCHMARK(BM_ImportSlab)
+    ->Args({57, 0})->Args({57, 1})->Args({129, 0})->Args({129, 1})->Args({235, 0})->Args({235, 1})
+    ->Args({407, 0})->Args({407, 1})
+    ->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 

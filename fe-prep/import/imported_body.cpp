@@ -83,51 +83,104 @@ void checkMassDefinite(const Eigen::SparseMatrix<double>& M, const DofList& dofs
   }
 }
 
+// The lower triangle of P^T A P / (s s^T) * scale for the lower triangle A of
+// a source matrix: source row i goes to body row to[i] (6 per node,
+// node-major), its values divided by s_i (the unit of its DOF). A relabelling
+// may carry an entry across the diagonal: it is stored at (max, min). Filled
+// in place, 12 bytes per entry, no triplet list.
+Eigen::SparseMatrix<double> spreadLowerTriangle(const Eigen::SparseMatrix<double>& A, const std::vector<long>& to,
+                                                const Eigen::VectorXd& s, double scale, long N) {
+  Eigen::SparseMatrix<double> B(N, N);
+  B.resizeNonZeros(A.nonZeros());
+  int* outer = B.outerIndexPtr();
+  int* inner = B.innerIndexPtr();
+  double* val = B.valuePtr();
+  auto target = [&](long r, long c) {
+    const long R = to[static_cast<std::size_t>(r)], C = to[static_cast<std::size_t>(c)];
+    return std::make_pair(std::min(R, C), std::max(R, C));  // (column, row)
+  };
+  for (long c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) ++outer[target(it.row(), c).first + 1];
+  for (long j = 0; j < N; ++j) outer[j + 1] += outer[j];
+  {
+    std::vector<int> next(outer, outer + N);
+    for (long c = 0; c < A.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+        const auto [col, row] = target(it.row(), c);
+        const int p = next[static_cast<std::size_t>(col)]++;
+        inner[p] = static_cast<int>(row);
+        val[p] = scale * it.value() / (s(it.row()) * s(c));
+      }
+  }
+  std::vector<std::pair<int, double>> work;
+  for (long j = 0; j < N; ++j) {
+    const int a = outer[j], b = outer[j + 1];
+    if (std::is_sorted(inner + a, inner + b)) continue;
+    work.clear();
+    for (int p = a; p < b; ++p) work.emplace_back(inner[p], val[p]);
+    std::sort(work.begin(), work.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (int p = a; p < b; ++p) inner[p] = work[static_cast<std::size_t>(p - a)].first, val[p] = work[static_cast<std::size_t>(p - a)].second;
+  }
+  return B;
+}
+
 }  // namespace
 
 ImportedModel importMatrices(const MatricesSpec& spec) {
   ImportedModel out;
   DofList dofs;
-  StoredMatrix Ks, Ms;
   if (!spec.dofs.empty()) dofs = readDofList(spec.dofs);
   const long nd = static_cast<long>(dofs.dofs.size());
-  if (spec.format == "calculix") {
-    Ks = readTripletMatrix(spec.stiffness, nd);
-    Ms = readTripletMatrix(spec.mass, nd);
-  } else if (spec.format == "matrix_market") {
-    Ks = readMatrixMarket(spec.stiffness);
-    Ms = readMatrixMarket(spec.mass);
-  } else {  // abaqus
-    AbaqusMatrix k = readAbaqusMatrix(spec.stiffness, nd), m = readAbaqusMatrix(spec.mass, nd);
-    if (!k.dofs.dofs.empty() && !dofs.dofs.empty())
-      fail(spec.dofs, 0, "the stiffness file " + spec.stiffness + " names its DOF itself (node, dof, node, dof, value); drop dofs:");
-    if (!k.dofs.dofs.empty()) {
-      dofs = k.dofs;
-      if (m.dofs.dofs.empty()) fail(spec.mass, 0, "expected the same 'node, dof, node, dof, value' form as the stiffness");
-      // The mass may omit DOF (massless rotations): its entries go to the stiffness's rows.
-      std::map<std::pair<long, int>, long> row;
-      for (std::size_t i = 0; i < dofs.dofs.size(); ++i) row[{dofs.dofs[i].node, dofs.dofs[i].dof}] = static_cast<long>(i);
-      std::vector<long> to(m.dofs.dofs.size());
-      for (std::size_t i = 0; i < m.dofs.dofs.size(); ++i) {
-        auto it = row.find({m.dofs.dofs[i].node, m.dofs.dofs[i].dof});
-        if (it == row.end())
-          fail(spec.mass, m.dofs.dofs[i].line, "node " + std::to_string(m.dofs.dofs[i].node) + " DOF " +
-                                                   std::to_string(m.dofs.dofs[i].dof) + " has mass but no stiffness (not in " + spec.stiffness + ")");
-        to[i] = it->second;
-      }
-      for (auto& e : m.matrix.entries) e.row = to[static_cast<std::size_t>(e.row)], e.col = to[static_cast<std::size_t>(e.col)];
-      m.matrix.size = static_cast<long>(dofs.dofs.size());
-    } else if (dofs.dofs.empty()) {
-      fail(spec.stiffness, 0, "a 'row, column, value' matrix needs dofs: naming each row's node and DOF");
+  // Each matrix is read, checked and kept as its lower triangle before the
+  // next is read: a file's entries (16 bytes each) live only while their own
+  // matrix is built (docs/benchmarks.md, "Imported matrices at scale").
+  Eigen::SparseMatrix<double> K, M;
+  if (spec.format == "calculix" || spec.format == "matrix_market") {
+    const bool ccx = spec.format == "calculix";
+    {
+      const StoredMatrix Ks = ccx ? readTripletMatrix(spec.stiffness, nd) : readMatrixMarket(spec.stiffness);
+      out.indexing = Ks.indexing;
+      K = symmetricLowerTriangle(Ks, nd, "stiffness", dofs, &out.storage_K);
     }
-    Ks = k.matrix;
-    Ms = m.matrix;
+    const StoredMatrix Ms = ccx ? readTripletMatrix(spec.mass, nd) : readMatrixMarket(spec.mass);
+    M = symmetricLowerTriangle(Ms, nd, "mass", dofs, &out.storage_M);
+  } else {  // abaqus
+    bool labelled = false;  // the stiffness names its DOF itself
+    {
+      const AbaqusMatrix k = readAbaqusMatrix(spec.stiffness, nd);
+      labelled = !k.dofs.dofs.empty();
+      if (labelled && !dofs.dofs.empty())
+        fail(spec.dofs, 0, "the stiffness file " + spec.stiffness + " names its DOF itself (node, dof, node, dof, value); drop dofs:");
+      if (labelled) dofs = k.dofs;
+      else if (dofs.dofs.empty())
+        fail(spec.stiffness, 0, "a 'row, column, value' matrix needs dofs: naming each row's node and DOF");
+      out.indexing = k.matrix.indexing;
+      K = symmetricLowerTriangle(k.matrix, static_cast<long>(dofs.dofs.size()), "stiffness", dofs, &out.storage_K);
+    }
+    AbaqusMatrix m = readAbaqusMatrix(spec.mass, nd);
+    if (labelled) {
+      if (m.dofs.dofs.empty()) fail(spec.mass, 0, "expected the same 'node, dof, node, dof, value' form as the stiffness");
+      // The mass may omit DOF (massless rotations): its entries go to the
+      // stiffness's rows (both lists ascend by node and DOF: a binary search).
+      std::vector<long> to(m.dofs.dofs.size());
+      auto key = [](const NodeDof& d) { return std::make_pair(d.node, d.dof); };
+      for (std::size_t i = 0; i < m.dofs.dofs.size(); ++i) {
+        const NodeDof& d = m.dofs.dofs[i];
+        auto it = std::lower_bound(dofs.dofs.begin(), dofs.dofs.end(), d,
+                                   [&](const NodeDof& a, const NodeDof& b) { return key(a) < key(b); });
+        if (it == dofs.dofs.end() || key(*it) != key(d))
+          fail(spec.mass, d.line, "node " + std::to_string(d.node) + " DOF " + std::to_string(d.dof) +
+                                      " has mass but no stiffness (not in " + spec.stiffness + ")");
+        to[i] = it - dofs.dofs.begin();
+      }
+      for (auto& e : m.matrix.entries)
+        e.row = static_cast<int>(to[static_cast<std::size_t>(e.row)]), e.col = static_cast<int>(to[static_cast<std::size_t>(e.col)]);
+      m.matrix.size = static_cast<long>(dofs.dofs.size());
+    }
+    M = symmetricLowerTriangle(m.matrix, static_cast<long>(dofs.dofs.size()), "mass", dofs, &out.storage_M);
   }
   const long n_src = static_cast<long>(dofs.dofs.size());
   out.source_dofs = n_src;
-  out.indexing = Ks.indexing;
-  Eigen::SparseMatrix<double> K = symmetricMatrix(Ks, n_src, "stiffness", dofs, &out.storage_K);
-  Eigen::SparseMatrix<double> M = symmetricMatrix(Ms, n_src, "mass", dofs, &out.storage_M);
   checkMassDefinite(M, dofs, spec.mass);
 
   // Nodes: those the DOF list names, in its order; each must be in the model.
@@ -203,25 +256,16 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
     s(i) = d.dof <= 3 ? L : 1.0;
   }
   const double e_scale = spec.units.energy(), m_scale = spec.units.mass * L * L;
-  auto spread = [&](const Eigen::SparseMatrix<double>& A, double scale) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(A.nonZeros()));
-    for (long c = 0; c < A.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it)
-        t.emplace_back(to[static_cast<std::size_t>(it.row())], to[static_cast<std::size_t>(c)],
-                       scale * it.value() / (s(it.row()) * s(c)));
-    Eigen::SparseMatrix<double> B(6 * n, 6 * n);
-    B.setFromTriplets(t.begin(), t.end());
-    return B;
-  };
-  out.K = spread(K, e_scale);
-  out.M = spread(M, m_scale);
+  out.K = spreadLowerTriangle(K, to, s, e_scale, 6 * n);
+  K = Eigen::SparseMatrix<double>();
+  out.M = spreadLowerTriangle(M, to, s, m_scale, 6 * n);
+  M = Eigen::SparseMatrix<double>();
 
   if (!(rigidMassProjection(out.mesh.nodes, out.M).mass > 0.0))
     fail(spec.mass, 0, "the mass matrix carries no mass in rigid translation (all zero?)");
   // A free model: its rigid motions must not strain it.
   const Eigen::MatrixXd R = rigidModes(out.mesh.nodes);
-  const Eigen::MatrixXd KR = out.K * R;
+  const Eigen::MatrixXd KR = out.K.selfadjointView<Eigen::Lower>() * R;
   double knorm = 0.0;
   for (long c = 0; c < out.K.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(out.K, c); it; ++it) knorm = std::max(knorm, std::abs(it.value()));
@@ -255,8 +299,8 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
   for (const auto* A : {&out.K, &out.M})
     for (long c = 0; c < A->outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(*A, c); it; ++it) {
-        const long i = it.row() / 6, j = c / 6;
-        if (i <= j) partners[static_cast<std::size_t>(i)].push_back(j);
+        const long i = c / 6, j = it.row() / 6;  // the lower triangle: i <= j
+        partners[static_cast<std::size_t>(i)].push_back(j);
       }
   out.pairs.nodes = out.mesh.nodes;
   for (long i = 0; i < n; ++i) {
@@ -270,33 +314,45 @@ ImportedModel importMatrices(const MatricesSpec& spec) {
 
 void ImportedModel::pairMatrices(long e, ElementResult& out) const {
   const long i = pairs.beams[static_cast<std::size_t>(e)][0], j = pairs.beams[static_cast<std::size_t>(e)][1];
+  // Rows of node a in the columns of node b (a >= b: in the lower triangle);
+  // a column's rows are sorted, so node a's are found by a search.
   auto block = [&](const Eigen::SparseMatrix<double>& A, long a, long b) {
     Eigen::Matrix<double, 6, 6> B = Eigen::Matrix<double, 6, 6>::Zero();
-    for (int c = 0; c < 6; ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, 6 * b + c); it; ++it)
-        if (it.row() >= 6 * a && it.row() < 6 * a + 6) B(it.row() - 6 * a, c) = it.value();
+    const int* inner = A.innerIndexPtr();
+    for (int c = 0; c < 6; ++c) {
+      const long col = 6 * b + c;
+      const int* first = inner + A.outerIndexPtr()[col];
+      const int* last = inner + A.outerIndexPtr()[col + 1];
+      for (const int* p = std::lower_bound(first, last, static_cast<int>(6 * a)); p != last && *p < 6 * a + 6; ++p)
+        B(*p - 6 * a, c) = A.valuePtr()[p - inner];
+    }
     return B;
   };
   if (i == j) {
     out.nodes = {i};
-    out.K = block(K, i, i);
-    out.M = block(M, i, i);
+    // The diagonal block from its lower half.
+    auto full = [&](const Eigen::SparseMatrix<double>& A) {
+      const Eigen::Matrix<double, 6, 6> L = block(A, i, i);
+      return Eigen::MatrixXd(Eigen::Matrix<double, 6, 6>(L.selfadjointView<Eigen::Lower>()));
+    };
+    out.K = full(K);
+    out.M = full(M);
     out.lumped = Eigen::VectorXd::Zero(6);
     return;
   }
   out.nodes = {i, j};
   out.K = Eigen::MatrixXd::Zero(12, 12);
   out.M = Eigen::MatrixXd::Zero(12, 12);
-  out.K.block<6, 6>(0, 6) = block(K, i, j);
-  out.K.block<6, 6>(6, 0) = out.K.block<6, 6>(0, 6).transpose();
-  out.M.block<6, 6>(0, 6) = block(M, i, j);
-  out.M.block<6, 6>(6, 0) = out.M.block<6, 6>(0, 6).transpose();
+  out.K.block<6, 6>(6, 0) = block(K, j, i);
+  out.K.block<6, 6>(0, 6) = out.K.block<6, 6>(6, 0).transpose();
+  out.M.block<6, 6>(6, 0) = block(M, j, i);
+  out.M.block<6, 6>(0, 6) = out.M.block<6, 6>(6, 0).transpose();
   out.lumped = Eigen::VectorXd::Zero(12);
 }
 
 MassProjection rigidMassProjection(const Eigen::MatrixXd& nodes, const Eigen::SparseMatrix<double>& M) {
   const Eigen::MatrixXd R = rigidModes(nodes);
-  const Eigen::MatrixXd MR = M * R;
+  const Eigen::MatrixXd MR = M.selfadjointView<Eigen::Lower>() * R;
   const Eigen::Matrix<double, 6, 6> P = R.transpose() * MR;
   MassProjection p;
   p.mass = P.topLeftCorner<3, 3>().trace() / 3.0;

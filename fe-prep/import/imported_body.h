@@ -27,7 +27,10 @@ struct ImportedModel {
   Mesh mesh;                   // the nodes the DOF list names (SI), sets from the model's *NSET
   std::vector<long> labels;    // the source's label of each mesh node
   std::vector<char> solid;     // the node has translations only
-  Eigen::SparseMatrix<double> K, M;  // (6 n, 6 n) SI, node-major body DOF
+  // (6 n, 6 n) SI, node-major body DOF: their lower triangles (column-major,
+  // row >= column; read them through selfadjointView<Eigen::Lower>()), one copy
+  // of each entry as a 1e6-DOF import needs.
+  Eigen::SparseMatrix<double> K, M;
   std::vector<SolidFace> faces;  // the solid elements' boundary faces (mesh indices): distributing patch weights
   Mesh pairs;                  // mesh nodes with beams = the coupled node pairs (i <= j), for assemble()
   std::string storage_K, storage_M, indexing;  // what the readers found
@@ -45,7 +48,8 @@ ImportedModel importMatrices(const MatricesSpec& spec);
 
 // The rigid-body projection R^T M R of a mass matrix (6 n x 6 n, node-major):
 // mass, first moment and the inertia about the origin (rotary terms included,
-// exact for consistent and coupled masses). `misfit` receives the largest
+// exact for consistent and coupled masses); M's lower triangle is read (a
+// full symmetric M gives the same). `misfit` receives the largest
 // departure of the translational block from m I, relative to m.
 struct MassProjection {
   double mass = 0.0;

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <charconv>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "common/files.h"
 #include "common/input.h"
@@ -63,31 +67,77 @@ std::vector<std::string> commaFields(const std::string& line) {
   return out;
 }
 
-long toLong(const std::string& s, const std::string& file, int line, const std::string& what) {
-  try {
-    std::size_t used = 0;
-    const long v = std::stol(s, &used);
-    if (used == s.size()) return v;
-  } catch (const std::exception&) {
-  }
-  fail(file, line, "expected " + what + " (an integer), got '" + s + "'");
+std::string_view trimView(std::string_view s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string_view::npos) return {};
+  const auto b = s.find_last_not_of(" \t\r\n");
+  return s.substr(a, b - a + 1);
 }
 
-double toDouble(const std::string& s, const std::string& file, int line, const std::string& what) {
-  std::string t = s;
+// Fields separated by blanks and/or commas, as views into `line` (no copies:
+// the matrix readers split ~4e7 lines at 1e6 DOF). Stores the first `cap`,
+// returns how many there are.
+std::size_t splitFields(std::string_view line, std::string_view* out, std::size_t cap) {
+  std::size_t count = 0, i = 0;
+  const std::size_t n = line.size();
+  auto sep = [](char c) { return c == ',' || c == ' ' || c == '\t' || c == '\r'; };
+  while (i < n) {
+    while (i < n && sep(line[i])) ++i;
+    if (i == n) break;
+    const std::size_t a = i;
+    while (i < n && !sep(line[i])) ++i;
+    if (count < cap) out[count] = line.substr(a, i - a);
+    ++count;
+  }
+  return count;
+}
+
+long toLong(std::string_view s, const std::string& file, int line, const std::string& what) {
+  std::string_view t = s;
+  if (t.size() > 1 && t[0] == '+') t.remove_prefix(1);
+  long v = 0;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec == std::errc() && r.ptr == t.data() + t.size() && !t.empty()) return v;
+  fail(file, line, "expected " + what + " (an integer), got '" + std::string(s) + "'");
+}
+
+double toDouble(std::string_view s, const std::string& file, int line, const std::string& what) {
+  std::string_view t = s;
+  if (t.size() > 1 && t[0] == '+') t.remove_prefix(1);
   // Fortran exponents (1.0D+03) as some codes write them.
-  for (char& c : t)
-    if (c == 'd' || c == 'D') c = 'e';
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(t, &used);
-    if (used == t.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
+  std::string fortran;
+  if (t.find_first_of("dD") != std::string_view::npos) {
+    fortran.assign(t);
+    for (char& c : fortran)
+      if (c == 'd' || c == 'D') c = 'e';
+    t = fortran;
   }
-  fail(file, line, "expected " + what + " (a finite number), got '" + s + "'");
+  double v = 0.0;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec == std::errc() && r.ptr == t.data() + t.size() && !t.empty() && std::isfinite(v)) return v;
+  fail(file, line, "expected " + what + " (a finite number), got '" + std::string(s) + "'");
 }
 
-bool blankOrComment(const std::string& t) { return t.empty() || t[0] == '#' || t[0] == '%' || t.rfind("**", 0) == 0; }
+// An index as the 32-bit one the sparse matrices store.
+int toIndex(long v, const std::string& file, int line) {
+  if (v > std::numeric_limits<int>::max() || v < std::numeric_limits<int>::min())
+    fail(file, line, "index " + std::to_string(v) + " beyond the 2^31 rows a matrix may have here");
+  return static_cast<int>(v);
+}
+
+// Lines in a file: a bound on its entries, so that they are reserved once
+// (a growing vector would hold twice their size while it moves them).
+std::size_t countLines(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return 0;
+  std::vector<char> buf(1 << 20);
+  std::size_t lines = 1, got = 0;
+  while ((got = std::fread(buf.data(), 1, buf.size(), f)) > 0) lines += static_cast<std::size_t>(std::count(buf.begin(), buf.begin() + static_cast<long>(got), '\n'));
+  std::fclose(f);
+  return lines;
+}
+
+bool blankOrComment(std::string_view t) { return t.empty() || t[0] == '#' || t[0] == '%' || t.rfind("**", 0) == 0; }
 
 // Base of triplet indices from their range and the DOF count (see readTripletMatrix).
 void decideBase(StoredMatrix& m, long dof_count, long lo, long hi, int lo_line, int hi_line) {
@@ -263,31 +313,32 @@ StoredMatrix readMatrixMarket(const std::string& path) {
   if (sym == "SYMMETRIC") m.declared_symmetric = true;
   else if (sym != "GENERAL") fail(path, 1, "expected general or symmetric storage, got '" + h[4] + "'");
   long declared = -1;
+  std::string_view f[4];
   while (std::getline(in, raw)) {
     ++line;
-    const std::string s = trim(raw);
+    const std::string_view s = trimView(raw);
     if (s.empty() || s[0] == '%') continue;
-    const auto f = fields(s);
+    const std::size_t nf = splitFields(s, f, 4);
     if (declared < 0) {
-      if (f.size() != 3) fail(path, line, "expected the size line 'rows columns entries'");
+      if (nf != 3) fail(path, line, "expected the size line 'rows columns entries'");
       const long r = toLong(f[0], path, line, "a row count"), c = toLong(f[1], path, line, "a column count");
       declared = toLong(f[2], path, line, "an entry count");
-      if (r != c || r <= 0) fail(path, line, "expected a square matrix, got " + f[0] + " x " + f[1]);
+      if (r != c || r <= 0) fail(path, line, "expected a square matrix, got " + std::string(f[0]) + " x " + std::string(f[1]));
       if (declared < 0) fail(path, line, "expected a non-negative entry count");
       m.size = r;
-      // Reserved up to a bound: the count is checked against the entries read, not trusted for memory.
-      m.entries.reserve(static_cast<std::size_t>(std::min<long>(declared, 10000000)));
+      // Reserved once, up to the file's lines: the count is checked against the entries read, not trusted for memory.
+      m.entries.reserve(std::min(static_cast<std::size_t>(declared), countLines(path)));
       continue;
     }
-    if (f.size() != 3) fail(path, line, "expected an entry 'row column value'");
-    MatrixEntry e{toLong(f[0], path, line, "a row index") - 1, toLong(f[1], path, line, "a column index") - 1,
-                  toDouble(f[2], path, line, "a value"), line};
-    if (e.row < 0 || e.col < 0) fail(path, line, "Matrix Market indices are one-based; found an index 0 or below");
-    if (e.row >= m.size || e.col >= m.size)
+    if (nf != 3) fail(path, line, "expected an entry 'row column value'");
+    const long r = toLong(f[0], path, line, "a row index") - 1, c = toLong(f[1], path, line, "a column index") - 1;
+    const double v = toDouble(f[2], path, line, "a value");
+    if (r < 0 || c < 0) fail(path, line, "Matrix Market indices are one-based; found an index 0 or below");
+    if (r >= m.size || c >= m.size)
       fail(path, line, "index beyond the " + std::to_string(m.size) + " rows the size line states");
-    if (m.declared_symmetric && e.col > e.row)
+    if (m.declared_symmetric && c > r)
       fail(path, line, "a 'symmetric' Matrix Market file stores the lower triangle; this entry is above the diagonal");
-    m.entries.push_back(e);
+    m.add({toIndex(r, path, line), toIndex(c, path, line), v}, line);
   }
   if (declared < 0) fail(path, line, "missing the size line 'rows columns entries'");
   if (static_cast<long>(m.entries.size()) != declared)
@@ -300,20 +351,22 @@ StoredMatrix readTripletMatrix(const std::string& path, long dof_count) {
   std::ifstream in = openText(path);
   StoredMatrix m;
   m.file = path;
+  m.entries.reserve(countLines(path));
   std::string raw;
   int line = 0, lo_line = 0, hi_line = 0;
   long lo = std::numeric_limits<long>::max(), hi = std::numeric_limits<long>::min();
+  std::string_view f[4];
   while (std::getline(in, raw)) {
     ++line;
-    const std::string s = trim(raw);
+    const std::string_view s = trimView(raw);
     if (blankOrComment(s)) continue;
-    const auto f = fields(s);
-    if (f.size() != 3) fail(path, line, "expected an entry 'row col value', got " + std::to_string(f.size()) + " fields");
-    MatrixEntry e{toLong(f[0], path, line, "a row index"), toLong(f[1], path, line, "a column index"),
-                  toDouble(f[2], path, line, "a value"), line};
-    if (std::min(e.row, e.col) < lo) lo = std::min(e.row, e.col), lo_line = line;
-    if (std::max(e.row, e.col) > hi) hi = std::max(e.row, e.col), hi_line = line;
-    m.entries.push_back(e);
+    const std::size_t nf = splitFields(s, f, 4);
+    if (nf != 3) fail(path, line, "expected an entry 'row col value', got " + std::to_string(nf) + " fields");
+    const long r = toLong(f[0], path, line, "a row index"), c = toLong(f[1], path, line, "a column index");
+    const double v = toDouble(f[2], path, line, "a value");
+    if (std::min(r, c) < lo) lo = std::min(r, c), lo_line = line;
+    if (std::max(r, c) > hi) hi = std::max(r, c), hi_line = line;
+    m.add({toIndex(r, path, line), toIndex(c, path, line), v}, line);
   }
   decideBase(m, dof_count, lo, hi, lo_line, hi_line);
   return m;
@@ -324,49 +377,59 @@ AbaqusMatrix readAbaqusMatrix(const std::string& path, long dof_count) {
   AbaqusMatrix out;
   StoredMatrix& m = out.matrix;
   m.file = path;
+  // The five-column form names DOF by (node, dof): a key node * 8 + dof per
+  // end, numbered once all are known.
   struct Raw {
-    long n1, d1, n2, d2;
-    double v;
-    int line;
+    long a = 0, b = 0;  // node * 8 + dof
+    double v = 0.0;
   };
   std::vector<Raw> five;
+  std::vector<int> five_line;
   std::string raw;
   int line = 0, lo_line = 0, hi_line = 0;
   long lo = std::numeric_limits<long>::max(), hi = std::numeric_limits<long>::min();
   int width = 0;
+  std::string_view f[6];
   while (std::getline(in, raw)) {
     ++line;
-    const std::string s = trim(raw);
+    const std::string_view s = trimView(raw);
     if (s.empty() || s[0] == '*' || s[0] == '#') continue;
-    const auto f = fields(s);
+    const std::size_t nf = splitFields(s, f, 6);
     if (width == 0) {
-      if (f.size() != 5 && f.size() != 3)
-        fail(path, line, "expected 'node, dof, node, dof, value' or 'row, column, value', got " + std::to_string(f.size()) + " fields");
-      width = static_cast<int>(f.size());
-    } else if (static_cast<int>(f.size()) != width) {
-      fail(path, line, "expected " + std::to_string(width) + " fields as on the first entry line, got " + std::to_string(f.size()));
+      if (nf != 5 && nf != 3)
+        fail(path, line, "expected 'node, dof, node, dof, value' or 'row, column, value', got " + std::to_string(nf) + " fields");
+      width = static_cast<int>(nf);
+      if (width == 5) {
+        five.reserve(countLines(path));
+        five_line.reserve(five.capacity());
+      } else {
+        m.entries.reserve(countLines(path));
+      }
+    } else if (static_cast<int>(nf) != width) {
+      fail(path, line, "expected " + std::to_string(width) + " fields as on the first entry line, got " + std::to_string(nf));
     }
     if (width == 5) {
-      Raw r{toLong(f[0], path, line, "a node label"), toLong(f[1], path, line, "a DOF 1..6"),
-            toLong(f[2], path, line, "a node label"), toLong(f[3], path, line, "a DOF 1..6"),
-            toDouble(f[4], path, line, "a value"), line};
-      for (long n : {r.n1, r.n2})
+      const long n1 = toLong(f[0], path, line, "a node label"), d1 = toLong(f[1], path, line, "a DOF 1..6");
+      const long n2 = toLong(f[2], path, line, "a node label"), d2 = toLong(f[3], path, line, "a DOF 1..6");
+      const double v = toDouble(f[4], path, line, "a value");
+      for (long n : {n1, n2})
         if (n <= 0)
           fail(path, line, "node label " + std::to_string(n) + ": Abaqus writes its internal nodes (the Lagrange "
                            "multipliers of constraints: MPCs, couplings, connectors) with labels below 1; they are not "
                            "structural DOF and are not imported (export the model without those constraints and give them "
                            "as fe-prep interfaces or reference conditions)");
-      for (long d : {r.d1, r.d2})
+      for (long d : {d1, d2})
         if (d < 1 || d > 6)
           fail(path, line, "DOF " + std::to_string(d) + " is not a structural DOF 1..6 (Lagrange multipliers, "
                            "temperatures and internal DOF are not imported)");
-      five.push_back(r);
+      five.push_back({8 * n1 + d1, 8 * n2 + d2, v});
+      five_line.push_back(line);
     } else {
-      MatrixEntry e{toLong(f[0], path, line, "a row index"), toLong(f[1], path, line, "a column index"),
-                    toDouble(f[2], path, line, "a value"), line};
-      if (std::min(e.row, e.col) < lo) lo = std::min(e.row, e.col), lo_line = line;
-      if (std::max(e.row, e.col) > hi) hi = std::max(e.row, e.col), hi_line = line;
-      m.entries.push_back(e);
+      const long r = toLong(f[0], path, line, "a row index"), c = toLong(f[1], path, line, "a column index");
+      const double v = toDouble(f[2], path, line, "a value");
+      if (std::min(r, c) < lo) lo = std::min(r, c), lo_line = line;
+      if (std::max(r, c) > hi) hi = std::max(r, c), hi_line = line;
+      m.add({toIndex(r, path, line), toIndex(c, path, line), v}, line);
     }
   }
   if (width == 3) {
@@ -375,23 +438,28 @@ AbaqusMatrix readAbaqusMatrix(const std::string& path, long dof_count) {
     return out;
   }
   if (five.empty()) fail(path, line, "no matrix entries found");
-  // The DOF list: every (node, dof) the entries name, ascending.
-  std::map<std::pair<long, long>, long> index;
-  std::map<std::pair<long, long>, int> first_line;
-  for (const Raw& r : five) {
-    index[{r.n1, r.d1}] = 0, index[{r.n2, r.d2}] = 0;
-    first_line.emplace(std::make_pair(r.n1, r.d1), r.line);
-    first_line.emplace(std::make_pair(r.n2, r.d2), r.line);
+  // The DOF list: every (node, dof) the entries name, ascending; each at the first line naming it.
+  std::vector<long> keys;
+  keys.reserve(2 * five.size());
+  for (const Raw& r : five) keys.push_back(r.a), keys.push_back(r.b);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  keys.shrink_to_fit();
+  auto indexOf = [&](long key) { return static_cast<long>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin()); };
+  std::vector<int> first_line(keys.size(), 0);
+  m.entries.reserve(five.size());
+  for (std::size_t k = 0; k < five.size(); ++k) {
+    const long i = indexOf(five[k].a), j = indexOf(five[k].b);
+    for (long x : {i, j})
+      if (!first_line[static_cast<std::size_t>(x)]) first_line[static_cast<std::size_t>(x)] = five_line[k];
+    m.add({toIndex(i, path, five_line[k]), toIndex(j, path, five_line[k]), five[k].v}, five_line[k]);
   }
-  long k = 0;
   out.dofs.file = path;
-  for (auto& [key, i] : index) {
-    i = k++;
-    out.dofs.dofs.push_back({key.first, static_cast<int>(key.second), first_line[key]});
-  }
-  m.size = k;
+  out.dofs.dofs.reserve(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    out.dofs.dofs.push_back({keys[i] / 8, static_cast<int>(keys[i] % 8), first_line[i]});
+  m.size = static_cast<long>(keys.size());
   m.indexing = "node and DOF labels";
-  for (const Raw& r : five) m.entries.push_back({index[{r.n1, r.d1}], index[{r.n2, r.d2}], r.v, r.line});
   return out;
 }
 
@@ -472,8 +540,22 @@ NodeTable readNodeTable(const std::string& path) {
   return t;
 }
 
-Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const std::string& name,
-                                            const DofList& dofs, std::string* storage) {
+int StoredMatrix::lineOf(long k) const {
+  auto it = std::upper_bound(line_runs.begin(), line_runs.end(), k,
+                             [](long v, const std::pair<long, int>& r) { return v < r.first; });
+  if (it == line_runs.begin()) return 0;
+  --it;
+  return it->second + static_cast<int>(k - it->first);
+}
+
+void StoredMatrix::add(const MatrixEntry& e, int line) {
+  const long k = static_cast<long>(entries.size());
+  if (line_runs.empty() || line_runs.back().second + (k - line_runs.back().first) != line) line_runs.emplace_back(k, line);
+  entries.push_back(e);
+}
+
+Eigen::SparseMatrix<double> symmetricLowerTriangle(const StoredMatrix& m, long n, const std::string& name,
+                                                   const DofList& dofs, std::string* storage) {
   auto dofName = [&](long i) {
     if (i >= 0 && i < static_cast<long>(dofs.dofs.size()))
       return "row " + std::to_string(i + 1) + " (node " + std::to_string(dofs.dofs[static_cast<std::size_t>(i)].node) +
@@ -483,24 +565,17 @@ Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const
   if (m.size >= 0 && m.size != n)
     fail(m.file, 0, "the " + name + " matrix has " + std::to_string(m.size) + " rows but the DOF list " + dofs.file +
                         " has " + std::to_string(n) + " (a DOF list that does not match the matrix)");
-  for (const auto& e : m.entries)
-    if (e.row < 0 || e.col < 0 || e.row >= n || e.col >= n)
-      fail(m.file, e.line, "index outside the " + std::to_string(n) + " rows of the DOF list " + dofs.file);
-  // Sorted copies by position: duplicates are adjacent, mirrors found by search.
-  std::vector<const MatrixEntry*> by(m.entries.size());
-  for (std::size_t k = 0; k < by.size(); ++k) by[k] = &m.entries[k];
-  auto less = [](const MatrixEntry* a, const MatrixEntry* b) { return a->row != b->row ? a->row < b->row : a->col < b->col; };
-  std::sort(by.begin(), by.end(), less);
-  for (std::size_t k = 1; k < by.size(); ++k)
-    if (by[k]->row == by[k - 1]->row && by[k]->col == by[k - 1]->col)
-      fail(m.file, std::max(by[k]->line, by[k - 1]->line),
-           "entry (" + std::to_string(by[k]->row + 1) + ", " + std::to_string(by[k]->col + 1) + ") given twice (lines " +
-               std::to_string(std::min(by[k]->line, by[k - 1]->line)) + " and " + std::to_string(std::max(by[k]->line, by[k - 1]->line)) +
-               "): duplicated entries are refused, not summed");
+  const long ne = static_cast<long>(m.entries.size());
+  if (ne >= std::numeric_limits<int>::max())
+    fail(m.file, 0, "the " + name + " matrix stores " + std::to_string(ne) + " entries; at most 2^31 - 1 are supported");
+  // The storage, the diagonal and which rows carry anything, in one pass.
   long upper_n = 0, lower_n = 0;
   Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
   std::vector<char> has_diag(static_cast<std::size_t>(n), 0), has_row(static_cast<std::size_t>(n), 0);
-  for (const auto& e : m.entries) {
+  for (long k = 0; k < ne; ++k) {
+    const MatrixEntry& e = m.entries[static_cast<std::size_t>(k)];
+    if (e.row < 0 || e.col < 0 || e.row >= n || e.col >= n)
+      fail(m.file, m.lineOf(k), "index outside the " + std::to_string(n) + " rows of the DOF list " + dofs.file);
     if (e.row < e.col) ++upper_n;
     if (e.row > e.col) ++lower_n;
     if (e.row == e.col) diag(e.row) = e.value, has_diag[static_cast<std::size_t>(e.row)] = 1;
@@ -508,6 +583,60 @@ Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const
   }
   const bool both = upper_n > 0 && lower_n > 0;
   if (storage) *storage = both ? "both triangles" : upper_n > 0 ? "upper triangle" : lower_n > 0 ? "lower triangle" : "diagonal";
+  // The lines of the entries at (r, c), for messages (a scan, on the way to an error only).
+  auto linesOf = [&](long r, long c) {
+    std::vector<int> lines;
+    for (long k = 0; k < ne; ++k)
+      if (m.entries[static_cast<std::size_t>(k)].row == r && m.entries[static_cast<std::size_t>(k)].col == c)
+        lines.push_back(m.lineOf(k));
+    return lines;
+  };
+
+  // The compressed matrix, filled in place: column j of the lower triangle is
+  // row j of the upper one, so one triangle's entries go to column min(r, c)
+  // at row max(r, c). With both triangles stored, each entry goes to its own
+  // row r (column r, row c: the transpose) until the mirrors are compared, and
+  // the upper triangle's copies are dropped afterwards.
+  auto outerOf = [&](const MatrixEntry& e) { return both ? e.row : std::min(e.row, e.col); };
+  auto innerOf = [&](const MatrixEntry& e) { return both ? e.col : std::max(e.row, e.col); };
+  Eigen::SparseMatrix<double> A(n, n);
+  A.resizeNonZeros(ne);
+  int* outer = A.outerIndexPtr();
+  int* inner = A.innerIndexPtr();
+  double* val = A.valuePtr();
+  std::fill(outer, outer + n + 1, 0);
+  for (const MatrixEntry& e : m.entries) ++outer[outerOf(e) + 1];
+  for (long j = 0; j < n; ++j) outer[j + 1] += outer[j];
+  {
+    std::vector<int> next(outer, outer + n);
+    for (const MatrixEntry& e : m.entries) {
+      const int p = next[static_cast<std::size_t>(outerOf(e))]++;
+      inner[p] = innerOf(e);
+      val[p] = e.value;
+    }
+  }
+  std::vector<std::pair<int, double>> work;
+  for (long j = 0; j < n; ++j) {
+    const int a = outer[j], b = outer[j + 1];
+    if (std::is_sorted(inner + a, inner + b)) continue;
+    work.clear();
+    for (int p = a; p < b; ++p) work.emplace_back(inner[p], val[p]);
+    std::stable_sort(work.begin(), work.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (int p = a; p < b; ++p) inner[p] = work[static_cast<std::size_t>(p - a)].first, val[p] = work[static_cast<std::size_t>(p - a)].second;
+  }
+  // Duplicates are neighbours now.
+  for (long j = 0; j < n; ++j)
+    for (int p = outer[j] + 1; p < outer[j + 1]; ++p) {
+      if (inner[p] != inner[p - 1]) continue;
+      // The entry as the file wrote it: (j, inner) or, one triangle stored, possibly its transpose.
+      long r = j, c = inner[p];
+      std::vector<int> lines = linesOf(r, c);
+      if (lines.size() < 2 && r != c) std::swap(r, c), lines = linesOf(r, c);
+      const int l1 = lines.size() > 0 ? lines[0] : 0, l2 = lines.size() > 1 ? lines[1] : 0;
+      fail(m.file, l2,
+           "entry (" + std::to_string(r + 1) + ", " + std::to_string(c + 1) + ") given twice (lines " + std::to_string(l1) +
+               " and " + std::to_string(l2) + "): duplicated entries are refused, not summed");
+    }
   for (long i = 0; i < n; ++i) {
     if (has_diag[static_cast<std::size_t>(i)]) continue;
     const bool rotation = dofs.dofs[static_cast<std::size_t>(i)].dof > 3;
@@ -515,45 +644,63 @@ Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const
     fail(m.file, 0, "the " + name + " matrix has no diagonal entry for " + dofName(i) +
                         (name == "mass" ? " (a translation, or a rotation coupled to others, needs its diagonal)" : ""));
   }
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(2 * m.entries.size());
-  for (const auto& e : m.entries) {
-    if (both) {
-      if (e.row > e.col) {
-        const MatrixEntry key{e.col, e.row, 0.0, 0};
-        auto it = std::lower_bound(by.begin(), by.end(), &key, less);
-        const double mirror = (it != by.end() && (*it)->row == e.col && (*it)->col == e.row) ? (*it)->value : 0.0;
-        const double scale = std::sqrt(std::abs(diag(e.row) * diag(e.col)));
-        if (std::abs(mirror - e.value) > 1e-9 * std::max({scale, std::abs(e.value), std::abs(mirror)}))
-          fail(m.file, e.line, "the " + name + " matrix is not symmetric: entry (" + std::to_string(e.row + 1) + ", " +
-                                   std::to_string(e.col + 1) + ") = " + std::to_string(e.value) + " but (" +
-                                   std::to_string(e.col + 1) + ", " + std::to_string(e.row + 1) + ") = " +
-                                   std::to_string(mirror) + (it != by.end() && (*it)->row == e.col && (*it)->col == e.row
-                                                                 ? " (line " + std::to_string((*it)->line) + ")"
-                                                                 : " (not given)"));
-      }
-      t.emplace_back(e.row, e.col, e.value);
-    } else {
-      t.emplace_back(e.row, e.col, e.value);
-      if (e.row != e.col) t.emplace_back(e.col, e.row, e.value);
-    }
-  }
   if (both) {
+    // Row r's entry at column c, or nullptr.
+    auto find = [&](long r, long c) -> const double* {
+      const int* first = inner + outer[r];
+      const int* last = inner + outer[r + 1];
+      const int* it = std::lower_bound(first, last, static_cast<int>(c));
+      return it != last && *it == c ? val + (it - inner) : nullptr;
+    };
+    for (long r = 0; r < n; ++r)
+      for (int p = outer[r]; p < outer[r + 1] && inner[p] < r; ++p) {
+        const long c = inner[p];
+        const double* mirror = find(c, r);
+        const double mv = mirror ? *mirror : 0.0;
+        const double scale = std::sqrt(std::abs(diag(r) * diag(c)));
+        if (std::abs(mv - val[p]) > 1e-9 * std::max({scale, std::abs(val[p]), std::abs(mv)})) {
+          const std::vector<int> here = linesOf(r, c);
+          fail(m.file, here.empty() ? 0 : here[0],
+               "the " + name + " matrix is not symmetric: entry (" + std::to_string(r + 1) + ", " + std::to_string(c + 1) +
+                   ") = " + std::to_string(val[p]) + " but (" + std::to_string(c + 1) + ", " + std::to_string(r + 1) +
+                   ") = " + std::to_string(mv) +
+                   (mirror ? " (line " + std::to_string(linesOf(c, r).front()) + ")" : " (not given)"));
+        }
+      }
     // Upper entries whose lower mirror is absent are asymmetric too.
-    for (const auto& e : m.entries) {
-      if (e.row >= e.col || e.value == 0.0) continue;
-      const MatrixEntry key{e.col, e.row, 0.0, 0};
-      auto it = std::lower_bound(by.begin(), by.end(), &key, less);
-      if (it == by.end() || (*it)->row != e.col || (*it)->col != e.row)
-        fail(m.file, e.line, "the " + name + " matrix is not symmetric: entry (" + std::to_string(e.row + 1) + ", " +
-                                 std::to_string(e.col + 1) + ") has no mirror (" + std::to_string(e.col + 1) + ", " +
-                                 std::to_string(e.row + 1) + ") though the file stores both triangles");
+    for (long r = 0; r < n; ++r)
+      for (int p = outer[r]; p < outer[r + 1]; ++p) {
+        const long c = inner[p];
+        if (c <= r || val[p] == 0.0 || find(c, r)) continue;
+        const std::vector<int> here = linesOf(r, c);
+        fail(m.file, here.empty() ? 0 : here[0],
+             "the " + name + " matrix is not symmetric: entry (" + std::to_string(r + 1) + ", " + std::to_string(c + 1) +
+                 ") has no mirror (" + std::to_string(c + 1) + ", " + std::to_string(r + 1) +
+                 ") though the file stores both triangles");
+      }
+    // Keep one triangle: row r's entries at columns c >= r (column r of the lower triangle).
+    int w = 0, start = outer[0];
+    for (long r = 0; r < n; ++r) {
+      const int end = outer[r + 1];
+      outer[r] = w;
+      for (int p = start; p < end; ++p)
+        if (inner[p] >= r) inner[w] = inner[p], val[w] = val[p], ++w;
+      start = end;
     }
+    outer[n] = w;
+    A.data().resize(w);
+    A.data().squeeze();
   }
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
   A.prune(0.0);
   return A;
+}
+
+Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const std::string& name,
+                                            const DofList& dofs, std::string* storage) {
+  const Eigen::SparseMatrix<double> lower = symmetricLowerTriangle(m, n, name, dofs, storage);
+  Eigen::SparseMatrix<double> full(n, n);
+  full = lower.selfadjointView<Eigen::Lower>();
+  return full;
 }
 
 }  // namespace fc::feprep

@@ -9,6 +9,7 @@
 #include <Eigen/Sparse>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fe-prep/import/solid_faces.h"
@@ -16,20 +17,26 @@
 namespace fc::feprep {
 
 // One entry as stored, indices 0-based once the reader has decided the base.
+// 16 bytes: a 1e6-DOF model holds ~4e7 of them while it is checked, so the
+// line of each entry is not kept with it (StoredMatrix::lineOf gives it).
 struct MatrixEntry {
-  long row = 0, col = 0;
+  int row = 0, col = 0;
   double value = 0.0;
-  int line = 0;
 };
 
 struct StoredMatrix {
   std::string file;
   long size = -1;  // dimension the file states (Matrix Market header), -1 when it states none
-  std::vector<MatrixEntry> entries;
+  std::vector<MatrixEntry> entries;  // in file order, one per data line
   std::string indexing;  // "one-based" or "zero-based" (what the reader found)
   bool declared_symmetric = false;  // Matrix Market "symmetric": one triangle by definition
+  // The line of entries[k], for messages: entries follow each other one per
+  // line except where comments or blank lines intervene, so only the entries
+  // that start a new run of consecutive lines are recorded (entry, line).
+  std::vector<std::pair<long, int>> line_runs;
+  int lineOf(long k) const;
+  void add(const MatrixEntry& e, int line);
 };
-
 // The DOF of a matrix row: a node label of the model and a component 1..6
 // (1-3 translations, 4-6 rotations, as CalculiX, Abaqus and Nastran number them).
 struct NodeDof {
@@ -83,13 +90,19 @@ DofList readDofList(const std::string& path);
 // keywords are skipped, *INCLUDE followed) or a plain table of "label x y z" lines.
 NodeTable readNodeTable(const std::string& path);
 
-// The symmetric matrix (both triangles) of `m`, `n` DOF, `name` "stiffness" or
-// "mass" for messages. Refuses: a size that differs from n, indices outside
-// 0..n-1, a duplicated entry, entries in both triangles that do not mirror each
-// other (non-symmetric), and a DOF whose diagonal entry is missing (for the
-// mass, missing diagonals are allowed on rotations whose whole row is absent:
-// a massless rotation). `storage` receives "upper triangle", "lower triangle" or
-// "both triangles".
+// The lower triangle (column-major: row >= column) of the symmetric matrix `m`
+// stores, `n` DOF, `name` "stiffness" or "mass" for messages. Refuses: a size
+// that differs from n, indices outside 0..n-1, a duplicated entry, entries in
+// both triangles that do not mirror each other (non-symmetric), and a DOF whose
+// diagonal entry is missing (for the mass, missing diagonals are allowed on
+// rotations whose whole row is absent: a massless rotation). `storage` receives
+// "upper triangle", "lower triangle", "both triangles" or "diagonal". The
+// matrix is built in place (12 bytes per kept entry beside the 16 of `m`'s
+// entries): no per-entry maps, sorted copies or triplet lists.
+Eigen::SparseMatrix<double> symmetricLowerTriangle(const StoredMatrix& m, long n, const std::string& name,
+                                                   const DofList& dofs, std::string* storage = nullptr);
+
+// The same matrix with both triangles (symmetricLowerTriangle, mirrored).
 Eigen::SparseMatrix<double> symmetricMatrix(const StoredMatrix& m, long n, const std::string& name,
                                             const DofList& dofs, std::string* storage = nullptr);
 

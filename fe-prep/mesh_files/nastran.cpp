@@ -61,12 +61,14 @@ struct Reader {
 
   void addRow(const std::string& file, int line, const std::vector<std::string>& data, bool large) {
     NastranCard& c = cards.back();
+    if (file != (c.other_files.empty() ? c.file : c.other_files.back().second))
+      c.other_files.emplace_back(c.fields.size(), file);
     if (!large && pending_large % 2 == 1) {
       // A small-field continuation after an unpaired large line: the row's other half is blank.
-      for (int k = 0; k < 4; ++k) c.fields.push_back({"", file, line});
+      for (int k = 0; k < 4; ++k) c.fields.push_back({"", line});
       pending_large = 0;
     }
-    for (const auto& d : data) c.fields.push_back({upper(trim(d)), file, line});
+    for (const auto& d : data) c.fields.push_back({upper(trim(d)), line});
     if (large) ++pending_large;
   }
 
@@ -77,26 +79,32 @@ struct Reader {
       if (from_file.empty()) throw InputError(path, 0, 0, "", "cannot read the Nastran deck '" + path + "'");
       failAt(from_file, from_line, "INCLUDE", "cannot read the included file '" + path + "'");
     }
-    std::vector<std::string> lines;
-    for (std::string l; std::getline(in, l);) lines.push_back(l);
-    // A deck with an executive and case control section starts its bulk data after BEGIN BULK.
-    std::size_t start = 0;
-    if (depth == 0)
-      for (std::size_t i = 0; i < lines.size(); ++i) {
-        std::string u = upper(trim(lines[i]));
+    // A deck with an executive and case control section starts its bulk data
+    // after BEGIN BULK: found by a first pass, the lines are then read one at a
+    // time (never the whole file held).
+    int start = 0;
+    std::string l;
+    if (depth == 0) {
+      int ln = 0;
+      while (std::getline(in, l)) {
+        ++ln;
+        std::string u = upper(trim(l));
         u.erase(std::remove(u.begin(), u.end(), ' '), u.end());
         if (u.rfind("BEGINBULK", 0) == 0) {
-          start = i + 1;
+          start = ln;
           break;
         }
       }
-    for (std::size_t i = start; i < lines.size() && !done; ++i) {
-      const int ln = static_cast<int>(i + 1);
-      std::string l = lines[i];
+      in.clear();
+      in.seekg(0);
+    }
+    std::vector<std::string> data;
+    for (int ln = 1; !done && std::getline(in, l); ++ln) {
+      if (ln <= start) continue;
       if (!l.empty() && l.back() == '\r') l.pop_back();
       const auto dollar = l.find('$');
-      if (dollar != std::string::npos) l = l.substr(0, dollar);
-      if (trim(l).empty()) continue;
+      if (dollar != std::string::npos) l.resize(dollar);
+      if (l.find_first_not_of(" \t\r\n") == std::string::npos) continue;
       const std::string head = upper(trim(l));
       if (head.rfind("ENDDATA", 0) == 0) {
         done = true;
@@ -124,10 +132,10 @@ struct Reader {
                  "a free-field line has " + std::to_string(tok.size()) + " fields; expected at most " +
                      std::to_string(per + 2) + " (field 1, " + std::to_string(per) +
                      " data fields and the continuation field), the rest on a continuation line");
-        std::vector<std::string> data(per);
+        data.assign(per, std::string());
         for (std::size_t k = 1; k < tok.size() && k <= per; ++k) data[k - 1] = tok[k];
         if (!cont) {
-          cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}});
+          cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}, {}});
           pending_large = 0;
         } else if (cards.empty()) {
           failAt(path, ln, "continuation", "a continuation line with no card before it");
@@ -135,18 +143,18 @@ struct Reader {
         addRow(path, ln, data, large);
         continue;
       }
-      l = expandTabs(l);
+      if (l.find('\t') != std::string::npos) l = expandTabs(l);
       const std::string f1 = upper(trim(l.substr(0, std::min<std::size_t>(8, l.size()))));
       const bool cont = f1.empty() || f1[0] == '+' || f1[0] == '*';
       const bool large = cont ? (!f1.empty() && f1[0] == '*') : (!f1.empty() && f1.back() == '*');
       if (!cont) {
-        cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}});
+        cards.push_back({large ? f1.substr(0, f1.size() - 1) : f1, path, ln, {}, {}});
         pending_large = 0;
       } else if (cards.empty()) {
         failAt(path, ln, "continuation", "a continuation line with no card before it");
       }
       const std::size_t width = large ? 16 : 8, per = large ? 4 : 8;
-      std::vector<std::string> data(per);
+      data.assign(per, std::string());
       for (std::size_t k = 0; k < per; ++k) {
         const std::size_t b = 8 + k * width;
         if (b < l.size()) data[k] = l.substr(b, std::min(width, l.size() - b));
@@ -170,10 +178,13 @@ struct Card {
   const NastranCard& c;
   std::string id;  // "GRID 12" for messages
 
-  std::string text(std::size_t i) const { return i < c.fields.size() ? c.fields[i].text : std::string(); }
+  const std::string& text(std::size_t i) const {
+    static const std::string empty;
+    return i < c.fields.size() ? c.fields[i].text : empty;
+  }
   bool blank(std::size_t i) const { return text(i).empty(); }
   int lineOf(std::size_t i) const { return i < c.fields.size() ? c.fields[i].line : c.line; }
-  const std::string& fileOf(std::size_t i) const { return i < c.fields.size() ? c.fields[i].file : c.file; }
+  const std::string& fileOf(std::size_t i) const { return c.fileOf(i); }
 
   [[noreturn]] void fail(std::size_t i, const std::string& name, const std::string& message) const {
     failAt(fileOf(i), lineOf(i), c.name + (id.empty() ? "" : " " + id) + ", " + fieldLabel(i) + " (" + name + ")",
@@ -947,10 +958,8 @@ void Builder::numberNodesAndElements(NastranModel& out) {
     if (s.g.size() == 4) add(s.g[0], s.g[2], s.g[3]);  // the 1-3 diagonal, as the .msh reader
     // Each triangle must have a frame (not degenerate, the axis not along its normal).
     for (std::size_t t = mesh.triangles.size() - (s.g.size() - 2); t < mesh.triangles.size(); ++t) {
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[t][static_cast<std::size_t>(i)]);
       try {
-        fe::shellFrame(xyz, s.axis);
+        fe::shellFrame(triangleXyz(mesh, static_cast<long>(t)), s.axis);
       } catch (const std::invalid_argument& e) {
         failAt(s.card->file, s.card->line, s.card->name + " " + firstField(*s.card),
                std::string(e.what()) + (s.g.size() == 4 ? " (in one of the two triangles on the G1-G3 diagonal)" : "") +
@@ -1159,6 +1168,13 @@ SectionMatrices boxSection(double W, double H, double t1, double t2, double E, d
   return s;
 }
 
+const std::string& NastranCard::fileOf(std::size_t field) const {
+  const std::string* f = &file;
+  for (const auto& [first, other] : other_files)
+    if (first <= field) f = &other;
+  return *f;
+}
+
 std::vector<NastranCard> readNastranCards(const std::string& path) {
   Reader r;
   r.read(path, "", 0, 0);
@@ -1212,9 +1228,7 @@ void applyNastranDeck(BodySpec& spec) {
         p = r.shell_property;
         p.name = r.name;
       }
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(mesh.triangles[e][static_cast<std::size_t>(i)]);
-      mesh.triangle_axis[e] = referenceAxisAt(r.axis, xyz.colwise().mean());
+      mesh.triangle_axis[e] = regionAxisOnTriangle(r, mesh, static_cast<long>(e));
     }
     for (std::size_t e = 0; e < mesh.beams.size(); ++e) {
       if (mesh.beam_group[e] != grp) continue;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <sstream>
 #include <tuple>
 
 #include "common/flexbody.h"
@@ -135,6 +136,41 @@ TEST(MatrixImportReaders, LocatedRefusals) {
   EXPECT_NE(errorOf([&] { readDofList(write(dir, "i.txt", "1 1\n1 7\n")); }).find("i.txt:2"), std::string::npos);
 }
 
+// The three storages of one symmetric matrix (upper, lower, both triangles;
+// comments between entries) give the same lower triangle, exactly (no
+// arithmetic on the values), and a duplicate after comment lines is reported
+// at its own lines (found again from the entries' line runs).
+TEST(MatrixImportReaders, StoragesGiveOneLowerTriangle) {
+  const std::string dir = test::scratchDir("import_storages");
+  const DofList d = readDofList(write(dir, "d.txt", "1 1\n1 2\n1 3\n2 1\n"));
+  Eigen::Matrix4d A;
+  A << 4, -1, 0, 0.5, -1, 5, 2, 0, 0, 2, 6, -3, 0.5, 0, -3, 7;
+  std::string up, low, both;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      if (A(r, c) == 0.0) continue;
+      const std::string e = std::to_string(r + 1) + " " + std::to_string(c + 1) + " " + std::to_string(A(r, c)) + "\n";
+      if (c >= r) up += e;
+      if (c <= r) low += e;
+      both += e;
+      if (r == 1 && c == 1) up += "# a comment\n\n", both += "** another\n";
+    }
+  for (const auto& [name, text, storage] : {std::tuple{"u.txt", up, "upper triangle"}, std::tuple{"l.txt", low, "lower triangle"},
+                                            std::tuple{"b.txt", both, "both triangles"}}) {
+    std::string found;
+    const Eigen::SparseMatrix<double> L = symmetricLowerTriangle(readTripletMatrix(write(dir, name, text), 4), 4, "stiffness", d, &found);
+    EXPECT_EQ(found, storage);
+    const Eigen::Matrix4d lower = A.triangularView<Eigen::Lower>();
+    EXPECT_EQ((Eigen::MatrixXd(L) - lower).cwiseAbs().maxCoeff(), 0.0) << name;
+    EXPECT_EQ((Eigen::MatrixXd(symmetricMatrix(readTripletMatrix(write(dir, name, text), 4), 4, "stiffness", d)) - A).cwiseAbs().maxCoeff(), 0.0) << name;
+  }
+  // Lines 1-2 entries, 3-4 comment and blank, 5-6 entries, 7 comment, 8 the repeat of line 6.
+  const std::string p = write(dir, "dup.txt", "1 1 4\n2 2 5\n# c\n\n3 3 6\n1 2 -1\n% c\n1 2 -1\n4 4 7\n");
+  const std::string e = errorOf([&] { symmetricLowerTriangle(readTripletMatrix(p, 4), 4, "stiffness", d); });
+  EXPECT_NE(e.find("dup.txt:8"), std::string::npos) << e;
+  EXPECT_NE(e.find("lines 6 and 8"), std::string::npos) << e;
+}
+
 // ---- the model checks (files of a two-node spring written here)
 
 struct Spring {
@@ -161,6 +197,38 @@ MatricesSpec specOf(const Spring& s) {
 const char* kSpringK = "1 1 1\n1 4 -1\n4 4 1\n2 2 0\n3 3 0\n5 5 0\n6 6 0\n";
 const char* kSpringM = "1 1 1\n2 2 1\n3 3 1\n4 4 1\n5 5 1\n6 6 1\n";
 const char* kSpringNodes = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n*NODE\n3, 0, 1, 0\n4, 0, 0, 1\n";
+
+// The DOF list in any order: reversed, the source's lower triangle lands in the
+// body's upper one and is mirrored back (spreadLowerTriangle); the body's K and
+// M equal those of the natural order exactly.
+TEST(MatrixImportModel, DofOrderDoesNotChangeTheBody) {
+  const ImportedModel natural = importMatrices(specOf(spring("import_order_a", kSpringK, kSpringM, kSpringNodes)));
+  auto reversed = [](const std::string& text) {  // row i -> 7 - i
+    std::istringstream in(text);
+    std::string out;
+    long r, c;
+    double v;
+    while (in >> r >> c >> v) out += std::to_string(7 - r) + " " + std::to_string(7 - c) + " " + std::to_string(v) + "\n";
+    return out;
+  };
+  const ImportedModel rev = importMatrices(specOf(spring("import_order_b", reversed(kSpringK), reversed(kSpringM), kSpringNodes,
+                                                         "2 3\n2 2\n2 1\n1 3\n1 2\n1 1\n")));
+  // Nodes are numbered in the DOF list's order: node 2 first here.
+  ASSERT_EQ(rev.labels, (std::vector<long>{2, 1}));
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(12, 12);  // natural body DOF -> reversed body DOF
+  for (int k = 0; k < 6; ++k) P(6 + k, k) = 1.0, P(k, 6 + k) = 1.0;
+  const Eigen::MatrixXd Kn = Eigen::MatrixXd(Eigen::SparseMatrix<double>(natural.K.selfadjointView<Eigen::Lower>()));
+  const Eigen::MatrixXd Kr = Eigen::MatrixXd(Eigen::SparseMatrix<double>(rev.K.selfadjointView<Eigen::Lower>()));
+  const Eigen::MatrixXd Mn = Eigen::MatrixXd(Eigen::SparseMatrix<double>(natural.M.selfadjointView<Eigen::Lower>()));
+  const Eigen::MatrixXd Mr = Eigen::MatrixXd(Eigen::SparseMatrix<double>(rev.M.selfadjointView<Eigen::Lower>()));
+  EXPECT_EQ((P * Kn * P.transpose() - Kr).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((P * Mn * P.transpose() - Mr).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(Kn(0, 6), -1.0);  // the spring couples the two nodes' x
+  // Only the lower triangles are stored.
+  for (const auto* A : {&rev.K, &rev.M})
+    for (long c = 0; c < A->outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*A, c); it; ++it) EXPECT_GE(it.row(), c);
+}
 
 TEST(MatrixImportModel, LocatedRefusals) {
   // The spring is fine.

@@ -170,6 +170,22 @@ std::string deckError(const std::string& text, const std::vector<std::string>& i
   return "";
 }
 
+// A continuation read from an included file: its fields are located there
+// (NastranCard::other_files), the card's first line stays in the deck.
+TEST(Nastran, ContinuationFromAnIncludeIsLocatedThere) {
+  writeDeck("cont.inc", "+,abc\n");
+  const std::string path = writeDeck("cont.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nMAT1,1,7.e10,,0.3,2700.\n"
+                                                 "PBARL,1,1,,ROD\nINCLUDE 'cont.inc'\nCBAR,1,1,1,2,0.,1.,0.\n");
+  std::string e;
+  try {
+    nastranModel(readNastranCards(path), unitSystem("m-kg-s"), {});
+  } catch (const InputError& x) {
+    e = x.what();
+  }
+  EXPECT_NE(e.find("cont.inc:1"), std::string::npos) << e;
+  EXPECT_NE(e.find("ABC"), std::string::npos) << e;
+}
+
 // A one-element deck the error cases edit.
 const char* const kPlate = R"($ one plate and one bar
 GRID,1,,0.,0.,0.
