@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -428,6 +429,21 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   f.writeMatrix("/mesh/nodes", body.nodes);
   for (const auto& [type, conn] : body.elements) f.writeIntMatrix("/mesh/" + type, conn);
   f.writeMatrix("/mass/nodal", body.nodal_mass);
+  for (const FlexRegion& r : body.regions) {
+    std::string key = r.name;  // a group name may hold a '/', a link name may not
+    std::replace(key.begin(), key.end(), '/', '_');
+    const std::string g = "/regions/" + (key.empty() ? std::string("_") : key);
+    f.writeIntVector(g + "/members", r.members);
+    if (r.kind != "set") f.writeScalar(g + "/mass", r.mass);
+    if (r.axes.rows() > 0) f.writeMatrix(g + "/axes", r.axes);
+    f.setAttribute(g, "name", r.name);
+    f.setAttribute(g, "kind", r.kind);
+    f.setAttribute(g, "members_of", r.members_of);
+    if (!r.property.empty()) f.setAttribute(g, "property", r.property);
+    if (!r.element.empty()) f.setAttribute(g, "element", r.element);
+    if (!r.axis.empty()) f.setAttribute(g, "axis", r.axis);
+    if (!r.summary.empty()) f.setAttribute(g, "summary", r.summary);
+  }
 
   writeArray(f, "/modes/eigenvalues", {um}, body.eigenvalues.data());
   writeArray(f, "/modes/frequencies_hz", {um}, body.frequencies_hz.data());
