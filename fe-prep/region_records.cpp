@@ -79,7 +79,8 @@ std::vector<FlexRegion> regionRecords(const Mesh& mesh, const std::vector<std::s
   }
   if (!mesh.point_masses.empty()) {
     FlexRegion r;
-    r.name = "masses";
+    r.name = "masses";  // a group of that name keeps it: the record gets a free one
+    while (names.count(r.name) || mesh.sets.count(r.name)) r.name += "_";
     r.kind = "masses";
     r.members_of = "nodes";
     for (const auto& pm : mesh.point_masses) {
