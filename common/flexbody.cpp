@@ -703,6 +703,11 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
     throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
                   " asked");
   const bool beam = f.exists("/stress/section_resultants");
+  // A body of shell and beam elements (a stiffened panel) gets none from fe-prep
+  // yet: rebuilding would not help, so say which body it is.
+  if (!f.exists("/mesh/centroids") && f.exists("/mesh/triangles") && f.exists("/mesh/beams"))
+    throw H5Error(path + ": no stress recovery data: the body mixes shell and beam elements, for which fe-prep "
+                  "writes none yet (docs/fe-prep.md, \"General bodies\"); its modes and interfaces are usable");
   if (!f.exists("/mesh/centroids") || (!f.exists("/stress/strains") && !beam))
     throw H5Error(path + ": no stress recovery data (/mesh/centroids with /stress/strains for shells or "
                   "/stress/section_resultants for beams); a body file written by this fe-prep has them (rebuild it)");
