@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -428,6 +429,21 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   f.writeMatrix("/mesh/nodes", body.nodes);
   for (const auto& [type, conn] : body.elements) f.writeIntMatrix("/mesh/" + type, conn);
   f.writeMatrix("/mass/nodal", body.nodal_mass);
+  for (const FlexRegion& r : body.regions) {
+    std::string key = r.name;  // a group name may hold a '/', a link name may not
+    std::replace(key.begin(), key.end(), '/', '_');
+    const std::string g = "/regions/" + (key.empty() ? std::string("_") : key);
+    f.writeIntVector(g + "/members", r.members);
+    if (r.kind != "set") f.writeScalar(g + "/mass", r.mass);
+    if (r.axes.rows() > 0) f.writeMatrix(g + "/axes", r.axes);
+    f.setAttribute(g, "name", r.name);
+    f.setAttribute(g, "kind", r.kind);
+    f.setAttribute(g, "members_of", r.members_of);
+    if (!r.property.empty()) f.setAttribute(g, "property", r.property);
+    if (!r.element.empty()) f.setAttribute(g, "element", r.element);
+    if (!r.axis.empty()) f.setAttribute(g, "axis", r.axis);
+    if (!r.summary.empty()) f.setAttribute(g, "summary", r.summary);
+  }
 
   writeArray(f, "/modes/eigenvalues", {um}, body.eigenvalues.data());
   writeArray(f, "/modes/frequencies_hz", {um}, body.frequencies_hz.data());
@@ -687,6 +703,11 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
     throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
                   " asked");
   const bool beam = f.exists("/stress/section_resultants");
+  // A body of shell and beam elements (a stiffened panel) gets none from fe-prep
+  // yet: rebuilding would not help, so say which body it is.
+  if (!f.exists("/mesh/centroids") && f.exists("/mesh/triangles") && f.exists("/mesh/beams"))
+    throw H5Error(path + ": no stress recovery data: the body mixes shell and beam elements, for which fe-prep "
+                  "writes none yet (docs/fe-prep.md, \"General bodies\"); its modes and interfaces are usable");
   if (!f.exists("/mesh/centroids") || (!f.exists("/stress/strains") && !beam))
     throw H5Error(path + ": no stress recovery data (/mesh/centroids with /stress/strains for shells or "
                   "/stress/section_resultants for beams); a body file written by this fe-prep has them (rebuild it)");

@@ -66,6 +66,22 @@ struct FlexInterface {
 constexpr int kGeometricStiffnessCaseCount = 12;
 extern const std::array<const char*, kGeometricStiffnessCaseCount> kGeometricStiffnessCases;
 
+// One region of a general body (fe-prep's `regions:`, a Nastran property, a
+// node set, the concentrated masses), written under /regions/NAME so that
+// `--inspect` can say what the body is made of (docs/body-file.md, "Regions").
+struct FlexRegion {
+  std::string name;
+  std::string kind;         // "shell", "beam", "set" or "masses"
+  std::string members_of;   // the /mesh dataset the members index: "triangles", "beams" or "nodes"
+  std::vector<long> members;// 0-based rows of /mesh/<members_of>
+  double mass = 0.0;        // [kg]; 0 for sets
+  std::string property;     // laminate name or section source; empty for sets and masses
+  std::string element;      // "dst" / "dkt" for shells, "timoshenko" for beams
+  std::string axis;         // the material axes in words (fibre reference axis, or the section's x2)
+  std::string summary;      // the line fe-prep printed for it
+  Eigen::MatrixXd axes;     // (n_members, 3): each triangle's fibre (0 deg) axis or each beam's x2; empty else
+};
+
 struct FlexBody {
   std::string name;
   Eigen::MatrixXd nodes;                        // (n_nodes, 3) undeformed, body frame [m]
@@ -106,6 +122,9 @@ struct FlexBody {
   // Stress recovery data (/mesh/centroids, /stress/): written when not empty,
   // never read by readFlexBody (mbs-run reads it with readStressData when asked).
   StressRecoveryData stress;
+  // General bodies: their regions (/regions/NAME); written when not empty,
+  // never read by readFlexBody (files without them stay readable).
+  std::vector<FlexRegion> regions;
 
   long nodeCount() const { return static_cast<long>(nodes.rows()); }
   int modeCount() const { return static_cast<int>(eigenvalues.size()); }

@@ -103,6 +103,23 @@ void summarise(const H5File& f, const std::string& kind, std::ostringstream& os)
       for (const auto& n : f.children("/interfaces")) os << " " << n;
       os << "\n";
     }
+    // A general body's regions (/regions/NAME): kind, element counts, mass, material axes.
+    if (f.exists("/regions")) {
+      os << "  regions:\n";
+      for (const auto& n : f.children("/regions")) {
+        const std::string g = "/regions/" + n;
+        auto attr = [&](const char* a) { return f.hasAttribute(g, a) ? f.stringAttribute(g, a) : std::string(); };
+        const std::string kind_r = attr("kind"), of = attr("members_of"), element = attr("element");
+        const long count = f.exists(g + "/members") ? static_cast<long>(f.readIntVector(g + "/members").size()) : 0;
+        os << "    " << (attr("name").empty() ? n : attr("name")) << ": " << kind_r << ", " << count << " "
+           << (of == "triangles" ? "triangles" : of == "beams" ? "beam elements" : count == 1 ? "node" : "nodes");
+        if (!element.empty()) os << " (" << element << ")";
+        if (f.exists(g + "/mass")) os << ", " << f.readScalar(g + "/mass") << " kg";
+        if (!attr("property").empty()) os << (kind_r == "shell" ? ", laminate " : ", section ") << attr("property");
+        if (!attr("axis").empty()) os << ", " << attr("axis");
+        os << "\n";
+      }
+    }
   } else if (kind == "results" && f.exists("/time")) {
     const Eigen::VectorXd t = f.readVector("/time");
     os << "summary: " << t.size() << " outputs";

@@ -1,4 +1,5 @@
 #include "fe-prep/build_body.h"
+#include "fe-prep/region_records.h"
 
 #include <sys/resource.h>
 
@@ -938,7 +939,10 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   if (!imported) body.stress = stressRecoveryData(mesh, spec, body.shapes, stress_note);
   if (!stress_note.empty() && rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
   const RigidProperties rp = imported ? importedRigidProperties(*imported) : meshProperties(mesh, false);
-  if (spec.general) res.regions = regionSummary(spec, mesh);
+  if (spec.general) {
+    res.regions = regionSummary(spec, mesh);
+    body.regions = regionRecords(mesh, res.regions);
+  }
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
   // The exact continuum values go beside it when they differ (row-sum lumping,
   // a moment correction that could not be applied, an asymmetric laminate whose

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -311,6 +312,68 @@ TEST(GeneralMesh, CurvedCompositePanelAgainstCalculix) {
                                                                   << ccx[static_cast<std::size_t>(j)];
     }
   }
+}
+
+// CalculiX's results for the stiffened panel (tests/data/calculix/stiffened_panel/ccx_results.txt).
+std::vector<double> stiffenedPanelCalculix(const std::string& key) {
+  std::ifstream in(std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel/ccx_results.txt");
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string k, n;
+    ls >> k >> n;
+    if (k + " " + n != key) continue;
+    std::vector<double> v;
+    for (double x; ls >> x;) v.push_back(x);
+    return v;
+  }
+  throw std::runtime_error("no CalculiX row " + key);
+}
+
+// The stiffened panel of examples/stiffened-panel (bare: no paint, no fitting
+// mass) clamped at its root, against CalculiX 2.20: [0/45/-45/90]s S8R
+// composite shells and B32R stringers on their own nodes tied to the skin's
+// translations (make_decks.py there; CalculiX's rigid knots, which a shared
+// node makes, stiffen this panel by 20 % in its first mode and are no
+// reference). fe-prep: DST on a 64 x 40 mesh (crossed diagonals), the
+// stringers sharing the skin's nodes with their torsion taken out of the
+// section (stringer.h5), which is what a translation-only tie means for them.
+// Converged: CalculiX 16 -> 64 moves f1, f2 by 0.3 % and 0.2 %, fe-prep
+// 64 -> 128 by 0.002 % and 0.02 %; the static deflection 0.4 % and 0.0005 %.
+// Measured (fe-prep 64 against CalculiX 64): f1 -0.09 %, f2 +0.02 %, uz/Fz
+// +0.16 %; tolerance 0.5 %, the 1 % with room for neither side's mesh.
+// Modes 3-10 are printed, not asserted: modes 3, 4, 6 and 10 stay 1.0-1.6 %
+// above CalculiX on the finest meshes, and the bare skin shows the same gaps
+// against CalculiX's S8R (docs/validation.md): they come from the shell
+// element, not the stringers, and are left open there.
+TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
+  const std::string dir = std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel";
+  std::string lam = "laminates:\n  skin: [";
+  const int angles[8] = {0, 45, -45, 90, 90, -45, 45, 0};
+  for (int k = 0; k < 8; ++k)
+    lam += std::string(k ? ", " : "") + "{material: im6, thickness: 0.00025, angle_deg: " + std::to_string(angles[k]) + "}";
+  const std::string lib = "materials:\n  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, "
+                          "G23: 3.6e9, nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}\n" + lam + "]\n";
+  const std::string regions = "  mesh: {file: " + dir + "/panel_64.msh}\n  mass: consistent\n  regions:\n"
+                              "    skin: {shell: {laminate: skin, element: dst, axis: [1, 0, 0]}}\n"
+                              "    stringers: {beam: {section: {file: " + dir + "/stringer.h5}, orientation: [0, 1, 0]}}\n"
+                              "  reference: {clamp: [root]}\n";
+  const BuildResult modal = runYaml(lib + "body:\n" + regions + "  ignore: [tip]\n  modes: 10\n");
+  const std::vector<double> ccx = stiffenedPanelCalculix("frequencies 64");
+  ASSERT_EQ(ccx.size(), 10u);
+  ASSERT_EQ(modal.body.modeCount(), 10);
+  for (int j = 0; j < 10; ++j) {
+    const double f = modal.body.frequencies_hz(j), c = ccx[static_cast<std::size_t>(j)];
+    std::printf("[   info   ] f%d: fe-prep %.5f Hz, CalculiX %.5f Hz (%+.2f %%)\n", j + 1, f, c, 100 * (f / c - 1));
+    if (j < 2) {
+      EXPECT_NEAR(f / c, 1.0, 0.005) << "mode " << j + 1;
+    }
+  }
+  const BuildResult stat = runYaml(lib + "body:\n" + regions +
+                                   "  interfaces:\n    tip: {point: [0.4, 0, 0], coupling: rigid, nodes: {set: tip}}\n  modes: 2\n");
+  const double uz = stat.body.interface("tip").static_compliance(2), c = stiffenedPanelCalculix("compliance 64")[0];
+  std::printf("[   info   ] tip uz/Fz: fe-prep %.6e m/N, CalculiX %.6e m/N (%+.2f %%)\n", uz, c, 100 * (uz / c - 1));
+  EXPECT_NEAR(uz / c, 1.0, 0.005);
 }
 
 }  // namespace
