@@ -251,11 +251,16 @@ TEST(FePrepCli, ManyModesOfAThinPanelRunOrGiveALocatedMessage) {
 // (K B, then M B) or the shapes B x, the eigen-solve's Krylov basis (23
 // vectors, under one block here) and PETSc's triplet copy of K's triangle
 // handed to MUMPS (about one block at b + k = 32): four. Measured 3.15-3.3 blocks
-// at this size (96 792 DOF); before the lifts were kept on their nodes and
-// the basis held once, 10.5 (lifts twice, K l_j, the constraint modes, B, its
-// restriction, K B, M B and the shapes each a full block). One more full copy
-// of the basis would pass the bound of 4. The peak is the reduction's (its
-// stages' lines); the body file's write, common to every reduction, follows.
+// at this size (96 792 DOF) while M had K's pattern; before the lifts were
+// kept on their nodes and the basis held once, 10.5 (lifts twice, K l_j, the
+// constraint modes, B, its restriction, K B, M B and the shapes each a full
+// block). Since M has its node-local pattern and the held patches are
+// multipliers, the assembly's figure (the baseline) fell by more than the
+// peak (217 -> 164 MB against 495 -> 460 MB): 4.19 blocks, the difference
+// the LDL^T factorisation's work space beside the smaller M. One more full
+// copy of the basis would give 5.2 and pass the bound of 4.5. The peak is the
+// reduction's (its stages' lines); the body file's write, common to every
+// reduction, follows.
 TEST(FePrepCli, CraigBamptonMemoryIsTheFactorisationPlusTheBasis) {
   const std::string dir = scratch("cb-memory");
   std::ostringstream y;
@@ -293,7 +298,7 @@ TEST(FePrepCli, CraigBamptonMemoryIsTheFactorisationPlusTheBasis) {
   ASSERT_GT(factor, 0.0) << out;  // MUMPS's own account is on the stage lines
   const double block_mb = 8.0 * N * basis_columns / (1024.0 * 1024.0);
   const double blocks = (peak - assembly - factor) / block_mb;
-  EXPECT_LE(blocks, 4.0) << "peak " << peak << " MB, assembly " << assembly << " MB, MUMPS factor " << factor
+  EXPECT_LE(blocks, 4.5) << "peak " << peak << " MB, assembly " << assembly << " MB, MUMPS factor " << factor
                          << " MB, basis block " << block_mb << " MB\n" << out;
   EXPECT_GE(peak, assembly + factor) << out;
   std::filesystem::remove_all(dir);
