@@ -20,7 +20,7 @@ std::vector<long> nodeOwnership(long n_nodes, int ranks) {
 }
 
 void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements, const ElementKernel& kernel,
-              AssembledSystem& out, const std::function<void(double)>& progress) {
+              AssembledSystem& out, const std::function<void(double)>& progress, bool nodal_mass) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -77,11 +77,65 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
     std::vector<long>().swap(a);
   }
 
+  // The node-local mass pattern: node i's mass reaches the nodes it is
+  // expressed through (sources[i]), all of them with each other. Every node i
+  // counts, not only this rank's: a rigid slave or a patch node owned by
+  // another rank puts its mass into rows this rank owns.
+  std::vector<PetscInt> dm_nnz, om_nnz;
+  if (nodal_mass) {
+    std::vector<std::vector<long>> adj_m(static_cast<std::size_t>(n1 - n0));
+    for (long i = 0; i < n; ++i) {
+      const auto& s = sources[static_cast<std::size_t>(i)];
+      for (long a : s)
+        if (a >= n0 && a < n1) adj_m[static_cast<std::size_t>(a - n0)].insert(adj_m[static_cast<std::size_t>(a - n0)].end(), s.begin(), s.end());
+    }
+    dm_nnz.assign(static_cast<std::size_t>(local), 0);
+    om_nnz.assign(static_cast<std::size_t>(local), 0);
+    for (long i = n0; i < n1; ++i) {
+      auto& a = adj_m[static_cast<std::size_t>(i - n0)];
+      a.push_back(i);
+      std::sort(a.begin(), a.end());
+      a.erase(std::unique(a.begin(), a.end()), a.end());
+      PetscInt d = 0, o = 0;
+      for (long j : a) (j >= n0 && j < n1 ? d : o) += map.count(j);
+      for (int k = 0; k < map.count(i); ++k) {
+        dm_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
+        om_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
+      }
+      std::vector<long>().swap(a);
+    }
+  }
+
+  // Held patches' multipliers (reference_conditions.h): the rows alpha C T on
+  // the patch DOF, their transposes in the patch DOF's rows, and an explicit
+  // zero diagonal; the multiplier rows are the last ones (the last rank's).
+  auto isLocal = [&](long g) { return g >= row0 && g < row1; };
+  std::vector<MultiplierRows> held;
+  for (std::size_t k = 0; k < map.held.size(); ++k) held.push_back(multiplierRows(map, k));
+  for (const auto& h : held) {
+    const long c = h.values.rows();
+    const bool mine_rows = isLocal(h.first_row);
+    for (long g : h.indices)
+      if (isLocal(g)) (mine_rows ? d_nnz : o_nnz)[static_cast<std::size_t>(g - row0)] += static_cast<PetscInt>(c);
+    if (!mine_rows) continue;
+    PetscInt d = 1, o = 0;
+    for (long g : h.indices) (isLocal(g) ? d : o) += 1;
+    for (long i = 0; i < c; ++i) {
+      d_nnz[static_cast<std::size_t>(h.first_row + i - row0)] = d;
+      o_nnz[static_cast<std::size_t>(h.first_row + i - row0)] = o;
+      if (nodal_mass) dm_nnz[static_cast<std::size_t>(h.first_row + i - row0)] = 1;  // the zero diagonal
+    }
+  }
+
   for (Mat* A : {&out.K, &out.M}) {
-    check(MatCreateAIJ(comm, local, local, map.reduced, map.reduced, 0, d_nnz.data(), 0, o_nnz.data(), A),
+    const bool own_pattern = nodal_mass && A == &out.M;
+    check(MatCreateAIJ(comm, local, local, map.reduced, map.reduced, 0, (own_pattern ? dm_nnz : d_nnz).data(), 0,
+                       (own_pattern ? om_nnz : o_nnz).data(), A),
           "MatCreateAIJ");
     check(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   }
+  std::vector<PetscInt>().swap(dm_nnz);
+  std::vector<PetscInt>().swap(om_nnz);
   out.first_row = row0;
   out.local_rows = local;
 
@@ -92,6 +146,7 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
   Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> buf;
   out.lumped = Eigen::VectorXd::Zero(6 * n);
   long mine = 0, done = 0;
+  double kdiag = 0.0;  // the largest diagonal of K, the multiplier rows' scale
   // Elements are the triangles, then the beams, then the point masses (one node each):
   // the point masses' index must not run on into the beams (it read past them).
   const long n_tri = static_cast<long>(mesh.triangles.size()), n_beam = static_cast<long>(mesh.beams.size());
@@ -109,15 +164,54 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
       out.lumped.segment<6>(6 * er.nodes[a]) += er.lumped.segment<6>(6 * static_cast<long>(a));
     reduceElement(map, er.nodes, er.K, Kr, idx);
     if (idx.empty()) continue;
-    reduceElement(map, er.nodes, er.M, Mr, idx);
+    if (Kr.size()) kdiag = std::max(kdiag, Kr.diagonal().cwiseAbs().maxCoeff());
     pidx.assign(idx.begin(), idx.end());
     const PetscInt m = static_cast<PetscInt>(pidx.size());
     buf = Kr;
     check(MatSetValues(out.K, m, pidx.data(), m, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
-    buf = Mr;
-    check(MatSetValues(out.M, m, pidx.data(), m, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
+    if (nodal_mass) {
+      // Node by node, within the node-local pattern.
+      const long a = static_cast<long>(er.nodes.size());
+      for (long i = 0; i < a; ++i) {
+        for (long j = 0; j < a; ++j)
+          if (j != i && er.M.block(6 * i, 6 * j, 6, 6).cwiseAbs().maxCoeff() > 0.0)
+            throw std::logic_error("assembly: a nodal mass pattern was asked but element " + std::to_string(e) +
+                                   "'s mass couples two nodes");
+        const Eigen::MatrixXd D = er.M.block(6 * i, 6 * i, 6, 6);
+        if (D.cwiseAbs().maxCoeff() == 0.0) continue;
+        reduceElement(map, {er.nodes[static_cast<std::size_t>(i)]}, D, Mr, idx);
+        if (idx.empty()) continue;
+        pidx.assign(idx.begin(), idx.end());
+        const PetscInt mi = static_cast<PetscInt>(pidx.size());
+        buf = Mr;
+        check(MatSetValues(out.M, mi, pidx.data(), mi, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
+      }
+    } else {
+      reduceElement(map, er.nodes, er.M, Mr, idx);
+      buf = Mr;
+      check(MatSetValues(out.M, m, pidx.data(), m, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
+    }
     ++done;
     if (progress && rank == 0 && (done % 1024 == 0)) progress(static_cast<double>(done) / static_cast<double>(mine));
+  }
+  if (!held.empty()) {
+    // Scaled to K's largest diagonal: the saddle point's pivots stay of one size
+    // (the multipliers, forces / alpha, are never read).
+    MPI_Allreduce(MPI_IN_PLACE, &kdiag, 1, MPI_DOUBLE, MPI_MAX, comm);
+    const double alpha = kdiag > 0.0 ? kdiag : 1.0;
+    for (const auto& h : held) {
+      if (!isLocal(h.first_row)) continue;
+      const PetscInt c = static_cast<PetscInt>(h.values.rows()), m = static_cast<PetscInt>(h.indices.size());
+      std::vector<PetscInt> rows(static_cast<std::size_t>(c));
+      for (PetscInt i = 0; i < c; ++i) rows[static_cast<std::size_t>(i)] = static_cast<PetscInt>(h.first_row + i);
+      pidx.assign(h.indices.begin(), h.indices.end());
+      buf = alpha * h.values;
+      check(MatSetValues(out.K, c, rows.data(), m, pidx.data(), buf.data(), ADD_VALUES), "MatSetValues");
+      buf = alpha * h.values.transpose();
+      check(MatSetValues(out.K, m, pidx.data(), c, rows.data(), buf.data(), ADD_VALUES), "MatSetValues");
+      for (PetscInt r : rows)
+        for (Mat A : {out.K, out.M}) check(MatSetValue(A, r, r, 0.0, ADD_VALUES), "MatSetValue");
+    }
   }
   for (Mat A : {out.K, out.M}) {
     check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

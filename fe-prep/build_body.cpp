@@ -513,7 +513,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   }
   DofMap map;
   try {
-    map = buildDofMap(mesh, conditions, couplings, patch_conditions);
+    map = buildDofMap(mesh, conditions, couplings, patch_conditions, options.patch_hold);
     if (imported) holdSolidRotations(map, imported->solid);
   } catch (const std::invalid_argument& e) {
     const InputNode where = spec.reference.empty() ? spec.interfaces.front().node : spec.reference.front().node;
@@ -523,7 +523,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   Eigen::MatrixXd rigid(map.reduced, rigid_full.cols());
   for (long j = 0; j < rigid_full.cols(); ++j) rigid.col(j) = map.restrict(rigid_full.col(j));
   res.dofs = 6 * mesh.nodeCount();
-  res.reduced_dofs = map.reduced;
+  res.reduced_dofs = map.constrainedDofs();
   res.rigid_removed = rigid.cols();
 
   // --- assembly
@@ -572,7 +572,9 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   };
   Progress pasm("assembly", 1.0, quiet);
   AssembledSystem sys;
-  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); });
+  // Lumped and point masses are node-local: M gets its own, smaller pattern.
+  const bool nodal_mass = spec.lumped && !imported;
+  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); }, nodal_mass);
   // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
   // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
   // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
@@ -605,7 +607,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       for (long k = 0; k < n; ++k) sys.lumped.segment<3>(6 * k).array() += dm(k);
     }
   }
-  pasm.finish("(" + std::to_string(map.reduced) + " DOF)");
+  pasm.finish("(" + std::to_string(map.constrainedDofs()) + " DOF)");
   res.stages.push_back({"assembly", sw.seconds(), sw.cpu(), peakRssMb(), 0.0});
 
   // --- eigen-solve
@@ -652,7 +654,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   // eigenvalue): refuse them here rather than let the eigen-solver search for
   // what does not exist.
   const long massless = masslessDofs(sys.M);
-  const long flexible = map.reduced - massless - rigid.cols();
+  const long flexible = map.constrainedDofs() + map.multipliers - massless - rigid.cols();
   // keep: [...] solves up to the highest mode number asked.
   const long solved = spec.keep_modes.empty() ? spec.modes : spec.keep_modes.back();
   if (solved > flexible)
@@ -664,6 +666,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   req.modes = spec.static_error > 0 ? 8 : solved;
   req.max_frequency_hz = spec.max_frequency_hz;
   req.tolerance = options.tolerance;
+  req.multipliers = map.multipliers;
   ModalResult modal;
   for (;;) {
     bool solver_limit = false;  // static_error: a doubled count the eigen-solver could not deliver
@@ -799,7 +802,7 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     DofMap free_map = buildDofMap(mesh, {}, couplings, {});
     if (imported) holdSolidRotations(free_map, imported->solid);
     AssembledSystem free_sys;
-    assemble(comm, amesh, free_map, n_el, kernel, free_sys);
+    assemble(comm, amesh, free_map, n_el, kernel, free_sys, {}, nodal_mass);
     if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
     CraigBamptonResult cbr =
         craigBampton(comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(mesh, {}));

@@ -10,6 +10,7 @@
 #include "common/flexbody.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/mesh.h"
+#include "fe-prep/reference_conditions.h"
 
 namespace fc::feprep {
 
@@ -45,6 +46,10 @@ struct BuildResult {
 struct BuildOptions {
   bool quiet = false;    // no progress lines
   double tolerance = 1e-10;
+  // Held distributing patches as multipliers (the default) or eliminated
+  // (reference_conditions.h); the same body to rounding, the elimination's K
+  // carries a dense block per patch. Kept for the comparison test.
+  PatchHold patch_hold = PatchHold::Multipliers;
 };
 
 // This process's peak resident memory so far, MiB (getrusage).

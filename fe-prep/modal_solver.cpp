@@ -61,7 +61,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
   // Massless DOF (drilling rotations) are infinite eigenvalues: only
   // N - massless - r elastic modes exist, and SLEPc's Krylov basis must stay
   // within the massive part (below).
-  const long massive = N - masslessDofs(M);
+  const long massive = N - masslessDofs(M) - request.multipliers;
   const long elastic_available = massive - r;
   if (elastic_available <= 0) throw ModeCountError("the model has no elastic degrees of freedom that carry mass");
 
@@ -179,7 +179,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
       check(VecRestoreArrayRead(xall, &a), "VecRestoreArrayRead");
       // A sign convention makes files comparable between runs: largest entry positive.
       Eigen::Index imax;
-      x.cwiseAbs().maxCoeff(&imax);
+      x.head(N - request.multipliers).cwiseAbs().maxCoeff(&imax);
       if (x(imax) < 0) x = -x;
       pairs.push_back({kr, std::move(x), share});
     }

@@ -21,6 +21,11 @@ struct ModalRequest {
   // Shift sigma < 0 (rad/s)^2 when rigid modes exist (K singular); with all
   // lambda >= 0 > sigma the modes nearest sigma are exactly the lowest ones.
   double shift = -1.0;
+  // The last `multipliers` rows of K are Lagrange multipliers of held patches
+  // (reference_conditions.h): no mass, no part of a shape. Each removes one
+  // DOF that carries mass from the constrained problem, and the sign
+  // convention looks at the other rows only.
+  long multipliers = 0;
 };
 
 struct ModalResult {

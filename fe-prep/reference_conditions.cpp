@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -59,7 +60,8 @@ enum class Role : char { Free, Conditioned, Slave, Patch };
 }  // namespace
 
 DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditions,
-                   const std::vector<RigidCoupling>& rigid, const std::vector<PatchCondition>& patches) {
+                   const std::vector<RigidCoupling>& rigid, const std::vector<PatchCondition>& patches,
+                   PatchHold hold) {
   const long n = mesh.nodeCount();
   const double length = std::max(mesh.characteristicLength(), 1e-12);
   auto nodeName = [&](long k) { return "node " + std::to_string(k); };
@@ -104,6 +106,7 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
     std::vector<std::pair<long, int>> independent;  // (node, component) of each column of P
   };
   std::vector<PatchElimination> elim;
+  std::vector<HeldPatch> held;
   for (const auto& pc : patches) {
     const long p = static_cast<long>(pc.nodes.size());
     for (long k : pc.nodes)
@@ -119,6 +122,12 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
     if (qr.rank() < c)
       throw std::invalid_argument("the conditions on a distributing interface are not independent (rank " +
                                   std::to_string(qr.rank()) + " of " + std::to_string(c) + ")");
+    if (hold == PatchHold::Multipliers) {
+      // The patch nodes keep their own six DOF; the rows join as multipliers.
+      for (long k : pc.nodes) role[static_cast<std::size_t>(k)] = Role::Patch;
+      held.push_back({pc.nodes, pc.C});
+      continue;
+    }
     std::vector<char> is_dep(static_cast<std::size_t>(6 * p), 0);
     for (long i = 0; i < c; ++i) is_dep[static_cast<std::size_t>(qr.colsPermutation().indices()(i))] = 1;
     std::vector<long> dep, ind;
@@ -182,12 +191,16 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
         int r = 0;
         for (int d = 0; d < 6; ++d)
           if (!dependent[ui][static_cast<std::size_t>(d)]) map.own[ui](r++, d) = 1.0;
+        map.unconstrained[ui] = k == 6 ? 1 : 0;  // a node of a patch held by multipliers
         break;
       }
     }
     next += map.own[ui].rows();
   }
-  map.reduced = next;
+  // The multipliers after every nodal reduced DOF.
+  for (const auto& h : held) map.multipliers += h.C.rows();
+  map.held = std::move(held);
+  map.reduced = next + map.multipliers;
 
   // T and idx: own DOF first, then slaves through their masters, patches through P.
   for (long i = 0; i < n; ++i) {
@@ -249,6 +262,7 @@ Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& r) const {
 
 Eigen::VectorXd DofMap::restrict(const Eigen::VectorXd& q) const {
   Eigen::VectorXd r(reduced);
+  r.tail(multipliers).setZero();
   const long n = static_cast<long>(T.size());
   for (long i = 0; i < n; ++i) {
     const auto& Oi = own[static_cast<std::size_t>(i)];
@@ -256,6 +270,32 @@ Eigen::VectorXd DofMap::restrict(const Eigen::VectorXd& q) const {
     r.segment(offset[static_cast<std::size_t>(i)], Oi.rows()) = Oi * q.segment<6>(6 * i);
   }
   return r;
+}
+
+MultiplierRows multiplierRows(const DofMap& map, std::size_t k) {
+  MultiplierRows out;
+  out.first_row = map.firstMultiplier();
+  for (std::size_t j = 0; j < k; ++j) out.first_row += map.held[j].C.rows();
+  const HeldPatch& h = map.held[k];
+  // C T on the patch nodes: column c of node a's T feeds reduced DOF idx_a[c].
+  std::map<long, Eigen::VectorXd> cols;
+  for (std::size_t a = 0; a < h.nodes.size(); ++a) {
+    const auto un = static_cast<std::size_t>(h.nodes[a]);
+    const Eigen::MatrixXd CT = h.C.middleCols(6 * static_cast<long>(a), 6) * map.T[un];
+    for (std::size_t c = 0; c < map.idx[un].size(); ++c) {
+      auto it = cols.find(map.idx[un][c]);
+      if (it == cols.end()) it = cols.emplace(map.idx[un][c], Eigen::VectorXd::Zero(h.C.rows())).first;
+      it->second += CT.col(static_cast<long>(c));
+    }
+  }
+  for (auto it = cols.begin(); it != cols.end();)
+    it = it->second.cwiseAbs().maxCoeff() > 0.0 ? std::next(it) : cols.erase(it);
+  out.values.resize(h.C.rows(), static_cast<long>(cols.size()));
+  for (const auto& [g, v] : cols) {
+    out.values.col(static_cast<long>(out.indices.size())) = v;
+    out.indices.push_back(g);
+  }
+  return out;
 }
 
 Eigen::MatrixXd admissibleRigidModes(const Mesh& mesh, const std::vector<PointCondition>& conditions) {

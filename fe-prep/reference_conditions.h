@@ -17,9 +17,22 @@
 // - distributing (RBE3) under a reference condition: the reference point's
 //   motion W q_patch (a weighted least-squares fit, no stiffness) must satisfy
 //   the condition, C W q_patch = 0; c dependent patch DOF (pivoted QR of C W)
-//   are eliminated in favour of the others, q_D = -(C W)_D^-1 (C W)_I q_I.
+//   are either eliminated in favour of the others, q_D = -(C W)_D^-1 (C W)_I q_I
+//   (PatchHold::Eliminate), or kept by Lagrange multipliers (PatchHold::
+//   Multipliers, the default): the patch nodes keep their six DOF and the
+//   c rows C W q_patch = 0 join the system as
+//     [K  A^T] [q]   [f]        [M 0]
+//     [A   0 ] [mu] = [0],       [0 0]   (A = alpha C W on the reduced DOF),
+//   a symmetric indefinite (saddle-point) K factorised by MUMPS LDL^T. The
+//   elimination expresses c DOF through all 6 p of the patch, so every element
+//   at those nodes couples the whole patch: a dense (6 p)^2 block in K per
+//   held patch, which grows as h^-4 under refinement; the multipliers add c
+//   rows of 6 p entries instead. The eigenpairs and static responses are the
+//   same (the constrained problem's); the multipliers have no mass, so they add
+//   only infinite eigenvalues, which shift-and-invert maps to zero.
 // So a node's DOF are q_n = T_n r[idx_n], idx_n the reduced DOF it depends on
-// (its own, its master's, or its patch's).
+// (its own, its master's, or its patch's); the multipliers come after every
+// nodal reduced DOF and belong to no node.
 #include <Eigen/Dense>
 #include <vector>
 
@@ -46,6 +59,15 @@ struct PatchCondition {
   Eigen::MatrixXd C;  // (c, 6 nodes.size())
 };
 
+enum class PatchHold { Multipliers, Eliminate };
+
+// A held distributing patch kept by multipliers: its rows C on the patch
+// nodes' full DOF (c, 6 nodes.size()).
+struct HeldPatch {
+  std::vector<long> nodes;
+  Eigen::MatrixXd C;
+};
+
 struct DofMap {
   std::vector<Eigen::MatrixXd> T;    // per node, 6 x idx[n].size()
   std::vector<std::vector<long>> idx;// per node: the reduced DOF its T columns refer to
@@ -53,19 +75,39 @@ struct DofMap {
   std::vector<long> offset;          // first own reduced DOF of each node (contiguous per node)
   long reduced = 0;                  // number of reduced DOF
   std::vector<char> unconstrained;   // per node: T_n is the identity on its own DOF
+  std::vector<HeldPatch> held;       // PatchHold::Multipliers: one block of multipliers per held patch
+  long multipliers = 0;              // their number: the last rows of the reduced system
+
+  // First multiplier row (every nodal reduced DOF comes before).
+  long firstMultiplier() const { return reduced - multipliers; }
+  // Dimension of the constrained problem: the nodal reduced DOF less one per
+  // multiplier (what the elimination would have kept).
+  long constrainedDofs() const { return reduced - 2 * multipliers; }
 
   // Number of reduced DOF node n owns (its rows of the reduced system).
   int count(long node) const { return static_cast<int>(own[static_cast<std::size_t>(node)].rows()); }
   // Full nodal vector (n_nodes * 6) from a reduced one.
   Eigen::VectorXd expand(const Eigen::VectorXd& reduced_vector) const;
-  // Reduced vector from a full one that satisfies the conditions.
+  // Reduced vector from a full one that satisfies the conditions (multipliers zero).
   Eigen::VectorXd restrict(const Eigen::VectorXd& full_vector) const;
 };
 
 // Throws std::invalid_argument when a node is claimed twice in incompatible ways
 // (a rigid slave that also carries a condition, overlapping patches).
 DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditions,
-                   const std::vector<RigidCoupling>& rigid = {}, const std::vector<PatchCondition>& patches = {});
+                   const std::vector<RigidCoupling>& rigid = {}, const std::vector<PatchCondition>& patches = {},
+                   PatchHold hold = PatchHold::Multipliers);
+
+// The multiplier rows of held patch k on the reduced DOF: C T_patch, the
+// columns that carry a non-zero entry (`indices`, ascending) and their values
+// (c, indices.size()); the rows are map.firstMultiplier() + (the multipliers of
+// the patches before k) + 0 .. c-1.
+struct MultiplierRows {
+  long first_row = 0;
+  std::vector<long> indices;
+  Eigen::MatrixXd values;
+};
+MultiplierRows multiplierRows(const DofMap& map, std::size_t k);
 
 // The rigid motions u = t + omega x X, theta = omega (small rotations about the
 // body origin) that satisfy every condition: (n_nodes * 6) x r, r <= 6.

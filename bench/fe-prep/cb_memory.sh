@@ -7,7 +7,8 @@
 # size: DOF, CPU seconds, the peak RSS after assembly, after the eigen-solve, of
 # the reduction and of the whole run (GNU time), MUMPS's own factor figure
 # (INFOG(21)), and what the reduction adds beyond assembly + factor in blocks of
-# the basis' size 8 N (b + k) bytes.
+# the basis' size 8 N (b + k) bytes; and the stored entries of the held K and
+# of M (PETSc's -mat_view ::ascii_info on the first two assembled matrices).
 #   bench/fe-prep/cb_memory.sh BUILD_DIR [DOF ...]    (default 1e4 3e4 1e5 3e5)
 #   REDUCTION=free bench/fe-prep/cb_memory.sh ...     the same mesh free-free, 20 modes
 # Run sizes one at a time on a shared machine; 1e6 DOF needs ~6 GB and ~10 min CPU.
@@ -21,8 +22,8 @@ feprep="$build/fe-prep/fe-prep"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-echo "| target DOF | DOF | reduction | CPU s | assembly MB | eigen-solve MB | reduction MB | whole run MB | MUMPS factor MB | basis block MB | (reduction - assembly - factor) / block |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| target DOF | DOF | reduction | CPU s | assembly MB | eigen-solve MB | reduction MB | whole run MB | MUMPS factor MB | basis block MB | (reduction - assembly - factor) / block | K entries | M entries |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for dof in "${sizes[@]}"; do
   # DOF ~ 6 nodes ~ 3 triangles; h from the equilateral-triangle area.
   h=$(awk -v d="$dof" 'BEGIN{n=d/3; printf "%.6g", sqrt(4*2.6/(sqrt(3)*n))}')
@@ -51,10 +52,11 @@ for dof in "${sizes[@]}"; do
       echo "  modes: 8"
     fi
   } > "$work/panel.yaml"
-  /usr/bin/time -f "%U %S %M" -o "$work/time" "$feprep" -q "$work/panel.yaml" -o "$work/panel.h5" > "$work/out"
+  PETSC_OPTIONS="-mat_view ::ascii_info" /usr/bin/time -f "%U %S %M" -o "$work/time" "$feprep" -q "$work/panel.yaml" -o "$work/panel.h5" > "$work/out"
   awk -v target="$dof" -v red="$reduction" -v timefile="$work/time" '
     BEGIN { getline t < timefile; split(t, a, " "); cpu = a[1] + a[2]; whole = a[3] / 1024 }
     / DOF, / { for (i = 1; i <= NF; ++i) if ($i == "DOF,") n = $(i - 1) }
+    /total: nonzeros=/ { if (++mats <= 2) { v = $2; sub(/nonzeros=/, "", v); sub(/,/, "", v); nnz[mats] = v } }
     /basis: craig_bampton:/ { cols = $3 + $7 }
     /basis: free:/ { cols = $3 }
     /peak RSS/ && !/write/ {
@@ -67,6 +69,6 @@ for dof in "${sizes[@]}"; do
     END {
       block = 8 * n * cols / 1048576
       if (red_mb == "") { red_mb = eig; extra = "-" } else extra = sprintf("%.2f", (red_mb - asm - fac) / block)
-      printf "| %d | %d | %s | %.1f | %d | %d | %d | %.0f | %d | %.1f | %s |\n", target, n, red, cpu, asm, eig, red_mb, whole, fac, block, extra
+      printf "| %d | %d | %s | %.1f | %d | %d | %d | %.0f | %d | %.1f | %s | %.3g | %.3g |\n", target, n, red, cpu, asm, eig, red_mb, whole, fac, block, extra, nnz[1], nnz[2]
     }' "$work/out"
 done

@@ -113,6 +113,44 @@ body:
   std::filesystem::remove_all(dir);
 }
 
+// Craig-Bampton with held distributing patches (multipliers: their rows on the
+// last rank, their patch nodes' rows on either) and a clamped rigid patch
+// (slaves whose masses land in their master's rows), with lumped masses in
+// their node-local pattern (assembly.h): the split must not change the body.
+TEST(FePrepCli, MpirunTwoRanksGivesTheSerialCraigBamptonWithMultipliersAndNodalMasses) {
+  const std::string dir = scratch("mpi-cb");
+  writeText(dir + "/panel.yaml", R"(materials:
+  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
+body:
+  name: panel
+  shell: {rectangle: {length: 1.0, width: 0.65}, material: cfrp_iso, thickness: 0.002, mesh: {size: 0.04}}
+  mass: lumped_moments
+  interfaces:
+    H1: {point: [-0.4, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
+    H2: {point: [-0.4, 0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}
+    M: {point: [0.0, 0.0, 0.0], coupling: distributing, nodes: {within: 0.12}}
+    R: {point: [0.45, 0.0, 0.0], coupling: rigid, nodes: {within: 0.08}}
+  reference: {pin: [H1, H2, M], clamp: [R]}
+  reduction: craig_bampton
+  modes: 6
+)");
+  std::string out;
+  ASSERT_EQ(run(feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/serial.h5", out, dir), 0) << out;
+  const std::string mpi = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -n 2 --oversubscribe ";
+  ASSERT_EQ(run(mpi + feprep() + " -q " + dir + "/panel.yaml -o " + dir + "/mpi.h5", out, dir), 0) << out;
+  fc::H5File a(dir + "/serial.h5", fc::H5File::Mode::Read), b(dir + "/mpi.h5", fc::H5File::Mode::Read);
+  EXPECT_EQ(b.stringAttribute("/", "reduction"), a.stringAttribute("/", "reduction"));
+  const Eigen::VectorXd la = a.readVector("/modes/eigenvalues"), lb = b.readVector("/modes/eigenvalues");
+  ASSERT_EQ(la.size(), 9 + 6 + 6 - 6);  // constraint modes + fixed-interface modes - rigid
+  ASSERT_EQ(lb.size(), la.size());
+  // The constraint modes are direct solves (rounding), the 6 fixed-interface
+  // modes meet SLEPc's 1e-10 residual; the Ritz values of the basis err at
+  // most linearly in the basis' difference: 1e-8, the requirement.
+  for (long i = 0; i < la.size(); ++i) EXPECT_NEAR(lb(i) / la(i), 1.0, 1e-8) << "shape " << i + 1;
+  EXPECT_EQ(a.readScalar("/inertia/mass"), b.readScalar("/inertia/mass"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(FePrepCli, BadInputUnderMpirunGivesOneMessage) {
   const std::string dir = scratch("mpi-bad");
   std::string yaml = kPanel;
@@ -213,11 +251,16 @@ TEST(FePrepCli, ManyModesOfAThinPanelRunOrGiveALocatedMessage) {
 // (K B, then M B) or the shapes B x, the eigen-solve's Krylov basis (23
 // vectors, under one block here) and PETSc's triplet copy of K's triangle
 // handed to MUMPS (about one block at b + k = 32): four. Measured 3.15-3.3 blocks
-// at this size (96 792 DOF); before the lifts were kept on their nodes and
-// the basis held once, 10.5 (lifts twice, K l_j, the constraint modes, B, its
-// restriction, K B, M B and the shapes each a full block). One more full copy
-// of the basis would pass the bound of 4. The peak is the reduction's (its
-// stages' lines); the body file's write, common to every reduction, follows.
+// at this size (96 792 DOF) while M had K's pattern; before the lifts were
+// kept on their nodes and the basis held once, 10.5 (lifts twice, K l_j, the
+// constraint modes, B, its restriction, K B, M B and the shapes each a full
+// block). Since M has its node-local pattern and the held patches are
+// multipliers, the assembly's figure (the baseline) fell by more than the
+// peak (217 -> 164 MB against 495 -> 460 MB): 4.19 blocks, the difference
+// the LDL^T factorisation's work space beside the smaller M. One more full
+// copy of the basis would give 5.2 and pass the bound of 4.5. The peak is the
+// reduction's (its stages' lines); the body file's write, common to every
+// reduction, follows.
 TEST(FePrepCli, CraigBamptonMemoryIsTheFactorisationPlusTheBasis) {
   const std::string dir = scratch("cb-memory");
   std::ostringstream y;
@@ -255,7 +298,7 @@ TEST(FePrepCli, CraigBamptonMemoryIsTheFactorisationPlusTheBasis) {
   ASSERT_GT(factor, 0.0) << out;  // MUMPS's own account is on the stage lines
   const double block_mb = 8.0 * N * basis_columns / (1024.0 * 1024.0);
   const double blocks = (peak - assembly - factor) / block_mb;
-  EXPECT_LE(blocks, 4.0) << "peak " << peak << " MB, assembly " << assembly << " MB, MUMPS factor " << factor
+  EXPECT_LE(blocks, 4.5) << "peak " << peak << " MB, assembly " << assembly << " MB, MUMPS factor " << factor
                          << " MB, basis block " << block_mb << " MB\n" << out;
   EXPECT_GE(peak, assembly + factor) << out;
   std::filesystem::remove_all(dir);
