@@ -42,10 +42,6 @@ struct EnergySensitivity {
   double absolute = 0.0, relative = 0.0;
 };
 
-struct JointReaction {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
-};
-
 struct EvalStats {
   long evaluations = 0;
   long al_iterations = 0;

@@ -37,6 +37,13 @@ struct JointRuntime {
   double last_angle = 0.0;
 };
 
+// What a joint transmits, as the results report it (sampling.h): the force
+// on the joint's first body (body_i) and the moment about its point on
+// body_i, both global; zero while the joint is disabled.
+struct JointReaction {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+};
+
 struct ConstraintRows {
   Eigen::MatrixXd Ji, Jj;  // (n, 6 + nm_i), (n, 6 + nm_j)
   Eigen::VectorXd phi, phit, c;

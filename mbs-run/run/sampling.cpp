@@ -45,12 +45,7 @@ std::vector<std::string> samplingWarnings(const Model& m) {
   return w;
 }
 
-Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
-  const Model& m = sys.model();
-  for (const Body& b : m.bodies)
-    if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
-  std::vector<BodyPose> P;  // (modal coordinates come with the poses)
-  sys.poses(y, P);
+Sample samplePoses(const Model& m, double t, const std::vector<BodyPose>& P, const std::vector<char>& force_on) {
   Sample s;
   s.time = t;
   s.bodies.resize(m.bodies.size());
@@ -64,22 +59,7 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
     b.modal_rate = P[k].modal_rate;
     if (m.bodies[k].stress) m.bodies[k].stress->recover(b.modal, b.stress);
   }
-  const std::vector<JointReaction> reac = sys.reactions(t, y);
   s.joints.resize(m.joints.size());
-  for (std::size_t j = 0; j < m.joints.size(); ++j) {
-    s.joints[j].reaction_force = reac[j].force;
-    s.joints[j].reaction_torque = reac[j].torque;
-    // The angle at the poses already taken (System::jointAngle would take
-    // them again for every joint: O(N^2) per row on a chain of N).
-    const Joint& jt = m.joints[j];
-    s.joints[j].angle =
-        jt.type == JointType::Revolute ? revoluteAngle(jt, sys.jointRuntime(int(j)), P[jt.body_i], P[jt.body_j]) : 0.0;
-    if (m.joints[j].limits.any()) {  // reads the multipliers reactions() left
-      const JointRuntime& rt = sys.jointRuntime(int(j));
-      s.joints[j].limit_state = rt.locked ? 2 : rt.contact;
-      s.joints[j].limit_torque = rt.locked || rt.contact != 0 ? sys.holdingTorque(int(j)) : 0.0;
-    }
-  }
   // Contact monitor: smallest distance between each named pair's geometry
   // (broad phase, bounding_volume_tree.h); each body placed once for all its pairs.
   std::vector<std::unique_ptr<PlacedGeometry>> placed(m.bodies.size());
@@ -95,8 +75,35 @@ Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
   for (const auto& pr : m.distance_pairs) s.distances.push_back(treeDistance(place(pr[0]), place(pr[1])));
   for (int f : m.contactElements()) {
     const ContactState cs = contactState(m.forces[static_cast<std::size_t>(f)], P);
-    s.contact_force.push_back(sys.forceEnabled(f) ? cs.force : 0.0);
+    s.contact_force.push_back(force_on[static_cast<std::size_t>(f)] ? cs.force : 0.0);
     s.contact_penetration.push_back(reportedPenetration(cs));
+  }
+  return s;
+}
+
+Sample takeSample(System& sys, double t, Eigen::VectorXd y) {
+  const Model& m = sys.model();
+  for (const Body& b : m.bodies)
+    if (!b.fixed) y.segment<4>(b.pos_index + 3).normalize();
+  std::vector<BodyPose> P;  // (modal coordinates come with the poses)
+  sys.poses(y, P);
+  std::vector<char> force_on(m.forces.size());
+  for (std::size_t f = 0; f < m.forces.size(); ++f) force_on[f] = sys.forceEnabled(int(f));
+  Sample s = samplePoses(m, t, P, force_on);
+  const std::vector<JointReaction> reac = sys.reactions(t, y);
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    s.joints[j].reaction_force = reac[j].force;
+    s.joints[j].reaction_torque = reac[j].torque;
+    // The angle at the poses already taken (System::jointAngle would take
+    // them again for every joint: O(N^2) per row on a chain of N).
+    const Joint& jt = m.joints[j];
+    s.joints[j].angle =
+        jt.type == JointType::Revolute ? revoluteAngle(jt, sys.jointRuntime(int(j)), P[jt.body_i], P[jt.body_j]) : 0.0;
+    if (m.joints[j].limits.any()) {  // reads the multipliers reactions() left
+      const JointRuntime& rt = sys.jointRuntime(int(j));
+      s.joints[j].limit_state = rt.locked ? 2 : rt.contact;
+      s.joints[j].limit_torque = rt.locked || rt.contact != 0 ? sys.holdingTorque(int(j)) : 0.0;
+    }
   }
   s.energy = sys.energies(t, y);
   s.energy_sensitivity = sys.energySensitivity(t, y);

@@ -47,8 +47,15 @@ struct Sample {
   std::vector<double> contact_force, contact_penetration;
 };
 
-// The output row at (t, y); y's Euler parameters are normalised first.
+// The constrained formulation's output row at (t, y); y's Euler parameters
+// are normalised first.
 Sample takeSample(System& sys, double t, Eigen::VectorXd y);
+
+// The part of a row that follows from the poses P alone, whatever the
+// formulation: the bodies (with their stress recovery), the contact monitor's
+// distances, the contact elements' forces (0 where force_on, per
+// Model::forces, is 0) and penetrations; joints sized, left at zero.
+Sample samplePoses(const Model& m, double t, const std::vector<BodyPose>& P, const std::vector<char>& force_on);
 
 // A sink's failure to store a row (a full disk): it ends the run at once and
 // is reported as an error, not as a status in a file that cannot be written.

@@ -4,8 +4,9 @@
 #include <optional>
 #include <stdexcept>
 
-#include "mbs-run/constrained/consistent_start.h"
-#include "mbs-run/constrained/system.h"
+#include "mbs-run/mechanics/force_elements.h"
+#include "mbs-run/mechanics/rigid_body.h"
+#include "mbs-run/run/finite_guard.h"
 #include "mbs-run/tree/kinematic_tree.h"
 
 namespace fc::mbs {
@@ -18,6 +19,31 @@ std::string treeFormulationDeclined(const Model& model) {
 }
 
 namespace {
+
+// The first ingredient of the tree's equations at poses P that is not
+// finite, as System::nonFiniteCause words it: a body's state, a body's mass
+// or inertia, a force element ("" when all are).
+std::string nonFiniteCauseAt(const Model& m, const std::vector<BodyPose>& P, const std::vector<JointRuntime>& rt) {
+  for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+    const Body& b = m.bodies[k];
+    if (b.fixed) continue;
+    if (!P[k].r.allFinite() || !P[k].p.allFinite() || !P[k].rdot.allFinite() || !P[k].w.allFinite())
+      return "the state of body " + b.name;
+    if (!std::isfinite(b.mass) || !b.com.allFinite() || !b.inertia_com.allFinite() ||
+        !rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A).allFinite() ||
+        !rigidQuadraticVelocity(b.mass, b.com, b.inertia_com, P[k].A, P[k].w).allFinite())
+      return "the mass or inertia of body " + b.name;
+  }
+  for (std::size_t f = 0; f < m.forces.size(); ++f) {
+    if (!m.forces[f].enabled) continue;
+    ForceSums sums;
+    sums.Q.setZero(m.nv);
+    addForceElement(m, m.forces[f], P, rt, ForceQuantity::ForcesAndPowers, sums);
+    if (!sums.Q.allFinite() || !std::isfinite(sums.dissipation) || !std::isfinite(sums.applied_power))
+      return "force element " + forceElementLabel(m, static_cast<int>(f));
+  }
+  return "";
+}
 
 // The joint-coordinate right-hand side: state z = [q (N), qd (N),
 // E_dissipated, W_applied] (the quadratures as in system.h).
@@ -73,6 +99,66 @@ class TreeRhs {
     return e;
   }
 
+  // Each joint's reaction at z (RNEA on the ABA's accelerations at z: the
+  // derivative's own forces and accelerations).
+  std::vector<JointReaction> reactions(const VectorXd& z) {
+    VectorXd zd;
+    derivative(z, zd);
+    --evaluations;  // an output row, not an integration step's evaluation
+    return treeReactions(m_, tree_, P_, z.segment(n(), n()), qdd_, sums_.Q);
+  }
+
+  // As System::energySensitivity for rigid bodies (system.h, run_quality.h):
+  // the momenta M v against the velocities, every enabled element's
+  // generalised forces against the positions, 1 for the two quadratures.
+  EnergySensitivity energySensitivity(const VectorXd& z) {
+    poses(z);
+    ForceSums sums;
+    sums.Q.setZero(m_.nv);
+    for (const ForceElement& fe : m_.forces)
+      if (fe.enabled) addForceElement(m_, fe, P_, rt_, ForceQuantity::ForcesAndPowers, sums);
+    EnergySensitivity e;
+    auto add = [&e](double g, double y_i) {
+      e.absolute += std::abs(g);
+      e.relative += std::abs(g * y_i);
+    };
+    for (std::size_t k = 0; k < m_.bodies.size(); ++k) {
+      const Body& b = m_.bodies[k];
+      if (b.fixed) continue;
+      Vector6d v;
+      v << P_[k].rdot, P_[k].w;
+      const Vector6d p = rigidMassMatrix(b.mass, b.com, b.inertia_com, P_[k].A) * v;
+      for (int i = 0; i < 6; ++i) add(p[i], v[i]);
+      const Vector6d Q = sums.Q.segment<6>(b.dof_index);
+      for (int i = 0; i < 3; ++i) add(Q[i], P_[k].r[i]);
+      for (int i = 3; i < 6; ++i) add(2.0 * Q[i], 1.0);  // Euler parameters: |p| = 1, a rotation of 2 |dp|
+    }
+    add(1.0, z[2 * n()]);
+    add(1.0, z[2 * n() + 1]);
+    return e;
+  }
+
+  // The largest |Phi| of the joints' constraint equations (constraints.h) at
+  // the poses z implies: rounding, as the tree holds its joints exactly; the
+  // same diagnostic the constrained formulation reports.
+  double violation(const VectorXd& z) {
+    poses(z);
+    double v = 0.0;
+    for (std::size_t j = 0; j < m_.joints.size(); ++j) {
+      const Joint& jt = m_.joints[j];
+      jointConstraints(jt, rt_[j], P_[jt.body_i], P_[jt.body_j], 0.0, rows_);
+      if (rows_.size()) v = std::max(v, rows_.phi.cwiseAbs().maxCoeff());
+    }
+    return v;
+  }
+
+  // What is not finite at z ("" when everything is), named as the
+  // constrained formulation names it (System::nonFiniteCause).
+  std::string nonFiniteCause(const VectorXd& z) {
+    if (!z.allFinite()) return "the joint coordinates";
+    return nonFiniteCauseAt(m_, poses(z), rt_);
+  }
+
   // The revolute angle of joint j: its initial angle plus the link's turn.
   double angle(int j, const VectorXd& z) const {
     const int k = link_of_joint_[j];
@@ -99,11 +185,12 @@ class TreeRhs {
   ForceSums sums_;
   TreeWorkspace ws_;
   VectorXd qdd_;
+  ConstraintRows rows_;
 };
 
 class TreeDynamics : public Dynamics {
  public:
-  explicit TreeDynamics(const Model& m) : m_(m), sys_(m) {
+  explicit TreeDynamics(const Model& m) : m_(m) {
     // An open tree that reaches every moving body (treeUnsupported): one link,
     // one joint coordinate, per moving body.
     for (const Body& b : m.bodies) links_ += b.fixed ? 0 : 1;
@@ -111,36 +198,43 @@ class TreeDynamics : public Dynamics {
 
   std::string formulation() const override { return "tree"; }
 
-  // The constrained formulation's consistent start, then the tree's
-  // coordinates there: z = [q (N), qd (N), E_dissipated, W_applied].
-  VectorXd start(double atol, std::vector<std::string>&) override {
-    const VectorXd y = consistentStart(sys_, atol);
-    std::vector<BodyPose> P0;
-    sys_.poses(y, P0);
-    std::vector<JointRuntime> runtimes;
-    for (std::size_t j = 0; j < m_.joints.size(); ++j) runtimes.push_back(sys_.jointRuntime(int(j)));
-    rhs_.emplace(m_, buildKinematicTree(m_, P0), runtimes);
+  // The scene's placement (treeUnsupported: it holds every joint, where the
+  // constrained start would leave it) is q = 0; the rates are the scene's
+  // velocities projected onto the tree's motions in the kinetic-energy
+  // metric, as the constrained start projects them onto its constraints:
+  // z = [q (N), qd (N), E_dissipated, W_applied].
+  VectorXd start(double, std::vector<std::string>&) override {
+    const std::vector<BodyPose> P0 = placedPoses(m_);
+    std::vector<JointRuntime> runtimes = treeJointRuntimes(m_, P0);
+    if (const std::string cause = nonFiniteCauseAt(m_, P0, runtimes); !cause.empty())
+      throw NonFiniteState("non-finite state: " + cause + " is not finite at t = 0 s");
+    rhs_.emplace(m_, buildKinematicTree(m_, P0), std::move(runtimes));
     const int n = rhs_->n();
     if (n != links_) throw std::logic_error("the kinematic tree has " + std::to_string(n) + " links, not one per moving body");
     VectorXd z = VectorXd::Zero(2 * n + 2);
-    z.segment(n, n) = treeRates(rhs_->tree(), P0);
+    z.segment(n, n) = treeProjectedRates(m_, rhs_->tree(), P0);
     return z;
   }
   // Error control on angles [rad] (or slides [m]) and their rates, as the
   // constrained formulation's on positions and velocities.
   int size() const override { return 2 * links_ + 2; }
   void derivative(double, const VectorXd& z, VectorXd& zd) override { rhs_->derivative(z, zd); }
+  std::string nonFiniteCause(double, const VectorXd& z) override { return rhs_ ? rhs_->nonFiniteCause(z) : ""; }
 
-  // The constrained sampling of the Cartesian state z implies (reactions from
-  // its constraint solve there), with the tree's own energies and unwrapped
-  // joint angles.
+  // The row from the tree's own state: the poses and velocities z implies,
+  // the joints' reactions by the RNEA at the ABA's accelerations, the
+  // unwrapped joint angles, the energies.
   Sample sample(double t, const VectorXd& z) override {
-    const int n = rhs_->n();
-    const Energies e = rhs_->energies(z);
-    Sample s = takeSample(sys_, t, constrainedState(m_, rhs_->poses(z), z[2 * n], z[2 * n + 1]));
-    s.energy = e;
-    for (std::size_t j = 0; j < m_.joints.size(); ++j)
+    const std::vector<JointReaction> reac = rhs_->reactions(z);
+    Sample s = samplePoses(m_, t, rhs_->poses(z), force_on_);
+    for (std::size_t j = 0; j < m_.joints.size(); ++j) {
+      s.joints[j].reaction_force = reac[j].force;
+      s.joints[j].reaction_torque = reac[j].torque;
       if (m_.joints[j].type == JointType::Revolute) s.joints[j].angle = rhs_->angle(int(j), z);
+    }
+    s.energy = rhs_->energies(z);
+    s.energy_sensitivity = rhs_->energySensitivity(z);
+    s.violation = rhs_->violation(z);
     return s;
   }
   double energy(double, const VectorXd& z) override { return rhs_->energies(z).total(); }
@@ -156,9 +250,14 @@ class TreeDynamics : public Dynamics {
 
  private:
   const Model& m_;
-  System sys_;  // the consistent start and the output rows' reactions
   std::optional<TreeRhs> rhs_;
   int links_ = 0;
+  // The tree has no events: each force element is on as the scene sets it.
+  std::vector<char> force_on_ = [this] {
+    std::vector<char> on;
+    for (const ForceElement& fe : m_.forces) on.push_back(fe.enabled);
+    return on;
+  }();
 };
 
 }  // namespace

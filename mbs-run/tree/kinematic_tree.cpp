@@ -1,6 +1,8 @@
 #include "mbs-run/tree/kinematic_tree.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 
 #include "common/rotations.h"
@@ -84,7 +86,81 @@ inline Vector6d crossForce(const Vector6d& v, const Vector6d& f) {
   return r;
 }
 
+// Link k's motion subspace at poses P (kinematic_tree.h): revolute
+// [n; x x n] with x the joint point on the child, prismatic [0; n].
+Vector6d motionSubspace(const TreeLink& L, const std::vector<BodyPose>& P) {
+  const BodyPose &pp = P[L.parent], &pc = P[L.body];
+  const Vector3d nax = pp.A * L.axis;
+  Vector6d S;
+  if (L.prismatic) {
+    S << Vector3d::Zero(), nax;
+  } else {
+    const Vector3d x = pc.r + pc.A * L.s_child;
+    S << nax, x.cross(nax);
+  }
+  return S;
+}
+
+// A body's spatial velocity at O: (omega, v_O), v_O = rdot - omega x r.
+Vector6d spatialVelocity(const BodyPose& pc) {
+  const Vector3d w = pc.A * pc.w;
+  Vector6d v;
+  v << w, pc.rdot - w.cross(pc.r);
+  return v;
+}
+
+// Spatial inertia at O of mass m at centre c with central inertia Ic:
+// [[Ic + m C C^T, m C], [m C^T, m 1]], C = c~ (Featherstone eq. 2.63).
+void spatialInertia(const Body& b, const BodyPose& pc, Matrix6d& I) {
+  const Vector3d c = pc.r + pc.A * b.com;
+  const Matrix3d C = fc::skew(c);
+  I.topLeftCorner<3, 3>() = pc.A * b.inertia_com * pc.A.transpose() - b.mass * C * C;
+  I.topRightCorner<3, 3>() = b.mass * C;
+  I.bottomLeftCorner<3, 3>() = -b.mass * C;
+  I.bottomRightCorner<3, 3>() = b.mass * Matrix3d::Identity();
+}
+
+// Q on the body's velocity coordinates [rdot, omega'] (a force at the frame
+// origin and a torque in body axes) as a spatial force at O: (r x f + A n', f).
+Vector6d spatialForce(const Body& b, const BodyPose& pc, const VectorXd& Q) {
+  const Vector3d f = Q.segment<3>(b.dof_index), tq = pc.A * Q.segment<3>(b.dof_index + 3);
+  Vector6d F;
+  F << pc.r.cross(f) + tq, f;
+  return F;
+}
+
 }  // namespace
+
+std::vector<BodyPose> placedPoses(const Model& m) {
+  std::vector<BodyPose> P(m.bodies.size());
+  for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+    const Body& b = m.bodies[k];
+    BodyPose& p = P[k];
+    p.r = b.position;
+    p.p = b.orientation.normalized();
+    p.A = fc::rotationMatrix(p.p);
+    p.free = !b.fixed;
+    p.rdot = b.fixed ? Vector3d::Zero() : b.velocity;
+    p.w = b.fixed ? Vector3d::Zero() : Vector3d(p.A.transpose() * b.angular_velocity);
+  }
+  return P;
+}
+
+std::vector<JointRuntime> treeJointRuntimes(const Model& m, const std::vector<BodyPose>& P0) {
+  std::vector<JointRuntime> rt(m.joints.size());
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const Joint& jt = m.joints[j];
+    rt[j].enabled = jt.enabled;
+    rt[j].locked = jt.locked;
+    const BodyPose &bi = P0[jt.body_i], &bj = P0[jt.body_j];
+    if (jt.type == JointType::Prismatic) captureLock(jt, rt[j], bi, bj);
+    if (jt.type == JointType::Revolute) {
+      rt[j].angle_offset = jt.initial_angle - rawRevoluteAngle(jt, bi, bj);
+      rt[j].last_angle = jt.initial_angle;
+    }
+  }
+  return rt;
+}
 
 std::string treeUnsupported(const Model& m) {
   for (const Body& b : m.bodies)
@@ -101,7 +177,28 @@ std::string treeUnsupported(const Model& m) {
     if (jt.stop_only) return "joint " + jt.name + " is stop_only";
   }
   std::vector<Edge> order;
-  return treeOrder(m, order);
+  if (const std::string why = treeOrder(m, order); !why.empty()) return why;
+  // The placement: every constraint within the constrained start's
+  // tolerance (System::correctPositions: 1e-12 of the largest position, at
+  // least 1 m), where that start leaves the poses as placed. !(<=) declines
+  // a non-finite placement too.
+  double scale = 1.0;
+  for (const Body& b : m.bodies) scale = std::max(scale, b.position.norm());
+  const std::vector<BodyPose> P0 = placedPoses(m);
+  const std::vector<JointRuntime> rt = treeJointRuntimes(m, P0);
+  ConstraintRows rows;
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    const Joint& jt = m.joints[j];
+    jointConstraints(jt, rt[j], P0[jt.body_i], P0[jt.body_j], 0.0, rows);
+    const double miss = rows.size() ? rows.phi.cwiseAbs().maxCoeff() : 0.0;
+    if (!(miss <= kPlacementTolerance * scale)) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.3g", miss);
+      return "joint " + jt.name + " does not hold as placed (misses by " + buf +
+             " m or rad; the constrained start assembles it)";
+    }
+  }
+  return "";
 }
 
 KinematicTree buildKinematicTree(const Model& m, const std::vector<BodyPose>& P0) {
@@ -206,37 +303,13 @@ void treeAccelerations(const Model& m, const KinematicTree& tree, const std::vec
   // acceleration c_i, rigid-body inertia at O and bias force.
   for (int k = 0; k < n; ++k) {
     const TreeLink& L = tree.links[k];
-    const BodyPose &pp = P[L.parent], &pc = P[L.body];
     const Body& b = m.bodies[L.body];
-    const Vector3d nax = pp.A * L.axis;
-    Vector6d& S = ws.S[k];
-    if (L.prismatic) {
-      S << Vector3d::Zero(), nax;
-    } else {
-      const Vector3d x = pc.r + pc.A * L.s_child;
-      S << nax, x.cross(nax);
-    }
-    const Vector3d w = pc.A * pc.w;
-    Vector6d& v = ws.v[k];
-    v << w, pc.rdot - w.cross(pc.r);
-    ws.c[k] = crossMotion(v, S * qd[k]);
-    // Spatial inertia at O of mass m at centre c with central inertia Ic:
-    // [[Ic + m C C^T, m C], [m C^T, m 1]], C = c~ (Featherstone eq. 2.63).
-    const Vector3d c = pc.r + pc.A * b.com;
-    const Matrix3d C = fc::skew(c);
-    Matrix6d& I = ws.IA[k];
-    I.topLeftCorner<3, 3>() = pc.A * b.inertia_com * pc.A.transpose() - b.mass * C * C;
-    I.topRightCorner<3, 3>() = b.mass * C;
-    I.bottomLeftCorner<3, 3>() = -b.mass * C;
-    I.bottomRightCorner<3, 3>() = b.mass * Matrix3d::Identity();
-    ws.pA[k] = crossForce(v, I * v);
-    if (Q.size()) {
-      // Q on [rdot, omega']: a force at the frame origin and a torque in body
-      // axes; as a spatial force at O: (r x f + A n', f).
-      const Vector3d f = Q.segment<3>(b.dof_index), tq = pc.A * Q.segment<3>(b.dof_index + 3);
-      ws.pA[k].head<3>() -= pc.r.cross(f) + tq;
-      ws.pA[k].tail<3>() -= f;
-    }
+    ws.S[k] = motionSubspace(L, P);
+    ws.v[k] = spatialVelocity(P[L.body]);
+    ws.c[k] = crossMotion(ws.v[k], ws.S[k] * qd[k]);
+    spatialInertia(b, P[L.body], ws.IA[k]);
+    ws.pA[k] = crossForce(ws.v[k], ws.IA[k] * ws.v[k]);
+    if (Q.size()) ws.pA[k] -= spatialForce(b, P[L.body], Q);
   }
   // Pass 2 (children first): articulated inertias and bias forces.
   for (int k = n - 1; k >= 0; --k) {
@@ -260,6 +333,65 @@ void treeAccelerations(const Model& m, const KinematicTree& tree, const std::vec
     qdd[k] = (ws.u[k] - ws.U[k].dot(a)) / ws.D[k];
     a += ws.S[k] * qdd[k];
   }
+}
+
+VectorXd treeProjectedRates(const Model& m, const KinematicTree& tree, const std::vector<BodyPose>& P0) {
+  // The tree at rest at P0 without gravity, each body's momentum I_d v0_d
+  // applied as a force (Q on its velocity coordinates, spatialForce's inverse).
+  KinematicTree at_rest = tree;
+  at_rest.gravity.setZero();
+  std::vector<BodyPose> P = P0;
+  VectorXd Q = VectorXd::Zero(m.nv);
+  Matrix6d I;
+  for (std::size_t k = 0; k < m.bodies.size(); ++k) {
+    const Body& b = m.bodies[k];
+    P[k].rdot.setZero();
+    P[k].w.setZero();
+    if (b.fixed) continue;
+    spatialInertia(b, P0[k], I);
+    const Vector6d h = I * spatialVelocity(P0[k]);
+    Q.segment<3>(b.dof_index) = h.tail<3>();
+    Q.segment<3>(b.dof_index + 3) = P0[k].A.transpose() * (h.head<3>() - P0[k].r.cross(h.tail<3>()));
+  }
+  TreeWorkspace ws;
+  VectorXd qd;
+  treeAccelerations(m, at_rest, P, VectorXd::Zero(tree.size()), Q, ws, qd);
+  return qd;
+}
+
+std::vector<JointReaction> treeReactions(const Model& m, const KinematicTree& tree, const std::vector<BodyPose>& P,
+                                         const VectorXd& qd, const VectorXd& qdd, const VectorXd& Q) {
+  const int n = tree.size();
+  std::vector<Vector6d> f(n), a(n);
+  Vector6d a0;
+  a0 << Vector3d::Zero(), -tree.gravity;
+  Matrix6d I;
+  // Forward (parents first): accelerations as the ABA's pass 3, then each
+  // body's inertial force less its external forces.
+  for (int k = 0; k < n; ++k) {
+    const TreeLink& L = tree.links[k];
+    const Body& b = m.bodies[L.body];
+    const Vector6d S = motionSubspace(L, P), v = spatialVelocity(P[L.body]);
+    a[k] = (L.parent_link < 0 ? a0 : a[L.parent_link]) + crossMotion(v, S * qd[k]) + S * qdd[k];
+    spatialInertia(b, P[L.body], I);
+    f[k] = I * a[k] + crossForce(v, I * v);
+    if (Q.size()) f[k] -= spatialForce(b, P[L.body], Q);
+  }
+  // Backward (children first): each subtree's force carried to its parent.
+  for (int k = n - 1; k >= 0; --k)
+    if (tree.links[k].parent_link >= 0) f[tree.links[k].parent_link] += f[k];
+  std::vector<JointReaction> out(m.joints.size());
+  for (int k = 0; k < n; ++k) {
+    const TreeLink& L = tree.links[k];
+    const Joint& jt = m.joints[L.joint];
+    const Vector6d on_i = jt.body_i == L.body ? f[k] : Vector6d(-f[k]);
+    const BodyPose& bi = P[jt.body_i];
+    const Vector3d x = bi.r + bi.A * jt.point_i;  // the joint's point on body i
+    JointReaction& r = out[L.joint];
+    r.force = on_i.tail<3>();
+    r.torque = on_i.head<3>() - x.cross(r.force);  // moment about x of a force at O
+  }
+  return out;
 }
 
 VectorXd constrainedState(const Model& m, const std::vector<BodyPose>& P, double dissipated, double applied_work) {

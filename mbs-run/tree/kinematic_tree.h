@@ -22,15 +22,28 @@
 // conventions cannot differ), carried from the body's velocity coordinates
 // [rdot, omega'] to a spatial force at O.
 //
-// Coordinates: q_i = 0 in the consistent initial configuration (the one the
-// constrained path projects the scene's poses onto), where the tree records
-// each child's orientation relative to its parent; q_i is the rotation about
+// Joint reactions (treeReactions) by the recursive Newton-Euler backward
+// pass (Featherstone ch. 5.3, table 5.1): with a_i the accelerations of the
+// ABA (gravity in the base's -g), the force transmitted across joint i from
+// its parent to body i is what the subtree of i needs beyond the external
+// forces acting on it,
+//   f_i = I_i a_i + v_i x* I_i v_i - f_i^ext + sum_{children c} f_c
+// (a spatial force at O); S_i^T f_i = 0 for a free joint (its force along the
+// joint's motion is the spring's or the torque's, in f^ext).
+//
+// Coordinates: q_i = 0 in the initial configuration (the scene's placement,
+// which must hold every joint: treeUnsupported), where the tree records each
+// child's orientation relative to its parent; q_i is the rotation about
 // (revolute) or displacement along (prismatic) the parent's axis since then.
+// The initial rates are the scene's body velocities projected onto the
+// tree's motions in the kinetic-energy metric (treeProjectedRates), as the
+// constrained start projects them onto its constraints.
 #include <Eigen/Dense>
 
 #include <string>
 #include <vector>
 
+#include "mbs-run/mechanics/constraints.h"
 #include "mbs-run/mechanics/kinematics.h"
 #include "mbs-run/model/model.h"
 #include "mbs-run/mechanics/rigid_body.h"
@@ -63,9 +76,23 @@ struct KinematicTree {
 };
 
 // Why the scene is not an open tree of rigid bodies on free revolute and
-// prismatic joints ("flexible body B", "joint J closes a loop", ...), or ""
-// when it is.
+// prismatic joints placed where its joints hold ("flexible body B", "joint J
+// closes a loop", "joint J does not hold as placed ...", ...), or "" when it
+// is. "Hold" is the constrained start's own test (System::assemble leaves a
+// placement whose every constraint is within 1e-12 of the scene's size as
+// it is, kPlacementTolerance): the tree starts where the constrained
+// formulation would, and a placement that needs assembling runs constrained.
 std::string treeUnsupported(const Model& m);
+constexpr double kPlacementTolerance = 1e-12;
+
+// The scene's placement: each body's pose and velocity as given (Euler
+// parameters normalised), before any projection.
+std::vector<BodyPose> placedPoses(const Model& m);
+
+// The joints' run-time state in configuration P0 (System::initializeJoints
+// for the tree's joints: the revolute angle offsets that make each angle its
+// initial_angle there, the prismatic joints' reference vectors).
+std::vector<JointRuntime> treeJointRuntimes(const Model& m, const std::vector<BodyPose>& P0);
 
 // The tree of a qualifying scene (treeUnsupported(m) empty) from its
 // consistent initial poses P0 (every joint satisfied).
@@ -73,6 +100,15 @@ KinematicTree buildKinematicTree(const Model& m, const std::vector<BodyPose>& P0
 
 // Joint rates of consistent poses and velocities P0 (q = 0 there).
 Eigen::VectorXd treeRates(const KinematicTree& tree, const std::vector<BodyPose>& P0);
+
+// Joint rates of the poses P0 (q = 0) whose body velocities need not be
+// tree motions: the motion J qd nearest to them in the kinetic-energy metric,
+// qd = (J^T M J)^-1 J^T M v0 (the constrained start's mass-orthogonal velocity
+// projection, System::assemble, in joint coordinates). J^T M v0 is the joint
+// space image of the bodies' momenta I_d v0_d, so qd is the rate an impulse
+// of those momenta gives the tree at rest: the ABA (treeAccelerations) with
+// zero velocities and gravity and the momenta as the applied forces, O(N).
+Eigen::VectorXd treeProjectedRates(const Model& m, const KinematicTree& tree, const std::vector<BodyPose>& P0);
 
 // Poses and velocities of every body at joint coordinates q and rates qd
 // (P sized to the bodies; fixed bodies copied from the tree).
@@ -92,8 +128,19 @@ struct TreeWorkspace {
 void treeAccelerations(const Model& m, const KinematicTree& tree, const std::vector<BodyPose>& P,
                        const Eigen::VectorXd& qd, const Eigen::VectorXd& Q, TreeWorkspace& ws, Eigen::VectorXd& qdd);
 
+// Each joint's reaction (Model::joints order) in the results' convention
+// (JointReaction: on the joint's body_i, about its point on body_i, global)
+// at poses P (treePoses of q, qd), joint accelerations qdd (treeAccelerations
+// at the same state with the same Q) and generalised forces Q (as there):
+// the RNEA backward pass above, O(N). The force transmitted to the child is
+// the reaction on the child; a joint whose body_i is the parent gets its
+// opposite.
+std::vector<JointReaction> treeReactions(const Model& m, const KinematicTree& tree, const std::vector<BodyPose>& P,
+                                         const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                         const Eigen::VectorXd& Q);
+
 // The constrained path's state vector (system.h) of poses P, with the two
-// energy quadratures: for the sampling and reaction kernels.
+// energy quadratures (for tests and benchmarks that compare the two).
 Eigen::VectorXd constrainedState(const Model& m, const std::vector<BodyPose>& P, double dissipated,
                                  double applied_work);
 

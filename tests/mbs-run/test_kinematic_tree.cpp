@@ -13,13 +13,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "chain_reference.h"
 #include "common/rotations.h"
 #include "helpers.h"
 #include "mbs-run/tree/kinematic_tree.h"
+#include "mbs-run/mechanics/force_elements.h"
+#include "mbs-run/run/constrained_dynamics.h"
 #include "mbs-run/run/simulation.h"
+#include "mbs-run/run/tree_dynamics.h"
 #include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
@@ -220,8 +225,9 @@ TEST(KinematicTree, SpatialTreeMatchesConstrainedPath) {
   EXPECT_LT(ori, 1e-9);
   EXPECT_LT(vel, 1e-8);
   EXPECT_LT(ang, 1e-9);
-  // Reactions: both from the same constrained solve, at states that differ by
-  // the above; the multiplier iteration converges to ~1e-10 relative.
+  // Reactions: the tree's by the RNEA, the constrained path's from its
+  // multipliers (converged to ~1e-10 relative), at states that differ by the
+  // above.
   EXPECT_LT(rf, 1e-9 * fscale);
   EXPECT_LT(rt, 1e-9 * fscale);
   EXPECT_LT(en, 1e-9);
@@ -286,9 +292,164 @@ TEST(KinematicTree, SinglePendulumClosedForm) {
               T, worst, r.reaction[0][1].norm(), pivot);
   // rtol 1e-11 over ~250 steps: ~1e-9 rad; comp_ellint_1 is exact to rounding.
   EXPECT_LT(worst, 1e-8);
-  // The reaction comes from the constrained solve at the tree's state
-  // (multiplier iteration converged to ~1e-10 relative).
+  // The reaction by the RNEA at the tree's state, whose own error is the
+  // integration's (rtol 1e-11).
   EXPECT_LT(force_err, 1e-8);
+}
+
+// The RNEA reactions (treeReactions) against the constrained formulation's
+// (System::reactions: the augmented-Lagrangian multipliers) at the same
+// states: random joint angles and rates, the Cartesian state they imply
+// given to System. Both are the exact constraint forces of one state, so
+// they differ by the multiplier iteration's convergence (3 updates at
+// penalty 1e6: ~1e-10 relative) and rounding. Scenes: the double pendulum
+// (tests/data/mbs-run/double_pendulum_tiny_step.yaml: joints listed parent
+// first) and the 3-D tree (tree_3d.yaml: non-parallel axes, a joint listed
+// child first with the axis reversed, a prismatic joint, offset centres,
+// springs, a damper and a torque acting, so f^ext is not gravity alone).
+TEST(KinematicTree, ReactionsEqualConstrainedSolve) {
+  for (const char* name : {"double_pendulum_tiny_step.yaml", "tree_3d.yaml"}) {
+    const Model m = loadScene(std::string(FLEXCOMP_DATA_DIR) + "/mbs-run/" + name);
+    ASSERT_EQ(treeUnsupported(m), "") << name;
+    const KinematicTree tree = buildKinematicTree(m, startPoses(m));
+    const int n = tree.size();
+    System sys(m);
+    Eigen::VectorXd y0 = sys.initialState();
+    sys.initializeJoints(y0);
+    double worst = 0.0, scale = 0.0, along = 0.0;
+    for (int trial = 0; trial < 5; ++trial) {
+      std::srand(31 + trial);
+      const Eigen::VectorXd q = Eigen::VectorXd::Random(n), qd = 3.0 * Eigen::VectorXd::Random(n);
+      std::vector<BodyPose> P;
+      treePoses(tree, q, qd, P);
+      Eigen::VectorXd qdd;
+      ForceSums sums;
+      sums.Q.setZero(m.nv);
+      const std::vector<JointRuntime> rt = treeJointRuntimes(m, startPoses(m));
+      for (int f : tree.other_forces) addForceElement(m, m.forces[f], P, rt, ForceQuantity::ForcesAndPowers, sums);
+      TreeWorkspace ws;
+      treeAccelerations(m, tree, P, qd, sums.Q, ws, qdd);
+      const std::vector<JointReaction> tr = treeReactions(m, tree, P, qd, qdd, sums.Q);
+      const std::vector<JointReaction> cs = sys.reactions(0.0, constrainedState(m, P, 0.0, 0.0));
+      for (std::size_t j = 0; j < m.joints.size(); ++j) {
+        worst = std::max({worst, (tr[j].force - cs[j].force).norm(), (tr[j].torque - cs[j].torque).norm()});
+        scale = std::max({scale, cs[j].force.norm(), cs[j].torque.norm()});
+        // A free joint transmits nothing along its own motion: no torque
+        // about a revolute's axis, no force along a prismatic's.
+        const Joint& jt = m.joints[j];
+        const Eigen::Vector3d axis = P[jt.body_i].A * jt.axis_i.normalized();
+        along = std::max(along, std::abs(axis.dot(jt.type == JointType::Revolute ? tr[j].torque : tr[j].force)));
+      }
+    }
+    std::printf("[   info   ] %s: RNEA vs augmented-Lagrangian reactions %.2e relative (largest %.3g); "
+                "along the joints' motion %.2e\n",
+                name, worst / scale, scale, along / scale);
+    EXPECT_GT(scale, 1.0);
+    EXPECT_LT(worst, 1e-9 * scale);
+    EXPECT_LT(along, 1e-12 * scale);  // rounding of the backward sums
+  }
+}
+
+// A compound pendulum (rod of length l, mass m, pivoted at one end, centre
+// at d = l/2, J = m l^2/3 about the pivot) in any state (theta, theta_dot):
+// Newton-Euler for one body about a fixed axis gives J alpha = moment of
+// gravity about the pivot, and the pin's force on the rod is
+// F = m (a_c - g) with a_c = alpha x r_c + w x (w x r_c); along the rod
+// towards the pivot m (g cos th + d thdot^2) (th from hanging down), across
+// it m g sin th (1 - m d^2 / J). The joint lists the rod first, so the
+// reaction on its first body is the force on the rod, the moment about the
+// pin zero (a symmetric rod turning about a principal axis).
+TEST(KinematicTree, PendulumPinReactionClosedForm) {
+  const double l = 0.8, mass = 1.3, g = 9.81, d = l / 2, J = mass * l * l / 3;
+  char s[900];
+  std::snprintf(s, sizeof s,
+                "bodies:\n"
+                "  - {name: ground, rigid: {mass: 1, inertia: [[1,0,0],[0,1,0],[0,0,1]]}, fixed: true}\n"
+                "  - {name: rod, rigid: {mass: %.17g, inertia: [[1e-9,0,0],[0,%.17g,0],[0,0,%.17g]]},"
+                " position: [%.17g, 0, 0]}\n"
+                "joints:\n"
+                "  - {name: pin, type: revolute, bodies: [rod, ground], points: [[%.17g, 0, 0], [0, 0, 0]],"
+                " axes: [[0, 1, 0], [0, 1, 0]]}\n"
+                "forces:\n  - {type: gravity, g: [0, 0, %.17g]}\n"
+                "simulation: {t_end: 1}\n",
+                mass, mass * l * l / 12, mass * l * l / 12, d, -d, -g);
+  const Model m = sceneFromText(s);
+  ASSERT_EQ(treeUnsupported(m), "");
+  const KinematicTree tree = buildKinematicTree(m, startPoses(m));
+  const Eigen::Vector3d gvec(0, 0, -g);
+  double worst = 0.0, worst_radial = 0.0, worst_torque = 0.0;
+  const std::pair<double, double> states[] = {{0.3, 0.0}, {-1.2, 2.5}, {2.9, -4.0}, {M_PI / 2, 1.0}};
+  for (const auto& [q0, qd0] : states) {
+    const Eigen::VectorXd q = Eigen::VectorXd::Constant(1, q0), qd = Eigen::VectorXd::Constant(1, qd0);
+    std::vector<BodyPose> P;
+    treePoses(tree, q, qd, P);
+    TreeWorkspace ws;
+    Eigen::VectorXd qdd;
+    treeAccelerations(m, tree, P, qd, Eigen::VectorXd(), ws, qdd);
+    const JointReaction r = treeReactions(m, tree, P, qd, qdd, Eigen::VectorXd())[0];
+    // The closed form from the pose alone.
+    const Eigen::Vector3d rc = P[1].r, n = P[0].A * tree.links[0].axis, w = n * qd0;
+    const Eigen::Vector3d alpha = n * (rc.cross(mass * gvec).dot(n) / J);
+    const Eigen::Vector3d F = mass * (alpha.cross(rc) + w.cross(w.cross(rc)) - gvec);
+    const Eigen::Vector3d e = rc / d;  // pivot -> centre
+    const double radial = mass * (gvec.dot(e) + d * qd0 * qd0);  // towards the pivot
+    const double across = mass * gvec.cross(e).norm() * (1.0 - mass * d * d / J);
+    worst = std::max(worst, (r.force - F).norm() / F.norm());
+    worst_radial = std::max({worst_radial, std::abs(-r.force.dot(e) - radial) / F.norm(),
+                             std::abs((r.force - r.force.dot(e) * e).norm() - std::abs(across)) / F.norm()});
+    worst_torque = std::max(worst_torque, r.torque.norm() / (F.norm() * l));
+  }
+  std::printf("[   info   ] pin force vs closed form %.2e relative (radial/tangential split %.2e), moment %.2e\n",
+              worst, worst_radial, worst_torque);
+  // Both sides are exact: rounding of a few operations on numbers of order 1-10.
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_LT(worst_radial, 1e-13);
+  EXPECT_LT(worst_torque, 1e-13);
+}
+
+// The tree's own start: the scene's placement and its velocities projected
+// onto the tree's motions equal the constrained start (consistentStart: the
+// assembly's mass-orthogonal velocity projection) on tree_3d.yaml, whose A
+// is given an angular velocity off its joint's axis. The projection solves
+// to 1e-13 relative (System::correctVelocities); the poses are as placed.
+// A placement off by 1 micrometre declines with the joint named, and auto
+// then runs constrained.
+TEST(KinematicTree, StartsFromThePlacementAsTheConstrainedStart) {
+  const Model m = loadScene(std::string(FLEXCOMP_DATA_DIR) + "/mbs-run/tree_3d.yaml");
+  std::vector<std::string> log;
+  const std::unique_ptr<Dynamics> tree = makeTreeDynamics(m);
+  const Sample st = tree->sample(0.0, tree->start(1e-11, log));
+  const std::unique_ptr<Dynamics> cons = makeConstrainedDynamics(m, "test");
+  const Sample sc = cons->sample(0.0, cons->start(1e-11, log));
+  double pos = 0.0, vel = 0.0, vscale = 0.0, reac = 0.0, rscale = 0.0;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    pos = std::max({pos, (st.bodies[b].position - sc.bodies[b].position).norm(),
+                    (st.bodies[b].orientation - sc.bodies[b].orientation).norm()});
+    vel = std::max({vel, (st.bodies[b].velocity - sc.bodies[b].velocity).norm(),
+                    (st.bodies[b].angular_velocity - sc.bodies[b].angular_velocity).norm()});
+    vscale = std::max(vscale, sc.bodies[b].angular_velocity.norm());
+  }
+  for (std::size_t j = 0; j < m.joints.size(); ++j) {
+    reac = std::max(reac, (st.joints[j].reaction_force - sc.joints[j].reaction_force).norm());
+    rscale = std::max(rscale, sc.joints[j].reaction_force.norm());
+    EXPECT_NEAR(st.joints[j].angle, sc.joints[j].angle, 1e-15) << m.joints[j].name;
+  }
+  std::printf("[   info   ] start: poses %.2e, velocities %.2e (of %.3g rad/s), reactions %.2e N (of %.3g N)\n", pos,
+              vel, vscale, reac, rscale);
+  EXPECT_LT(pos, 1e-15);
+  EXPECT_GT((m.bodies[1].angular_velocity - sc.bodies[1].angular_velocity).norm(), 0.1);  // projected
+  EXPECT_LT(vel, 1e-12 * vscale);
+  EXPECT_LT(reac, 1e-9 * rscale);
+  EXPECT_EQ(tree->formulation(), "tree");
+
+  Model off = m;
+  off.bodies[3].position.x() += 1e-6;  // C, 1 um off its joint JC on A
+  const std::string why = treeUnsupported(off);
+  EXPECT_EQ(why.rfind("joint JC does not hold as placed (misses by 1e-06 m or rad", 0), 0u) << why;
+  off.settings.t_end = 0.01;
+  const Results r = simulate(off, {true});
+  EXPECT_EQ(r.formulation, "constrained (" + why + ")");
+  EXPECT_EQ(r.status, "completed");
 }
 
 TEST(KinematicTree, DeclinesWhatItDoesNotSupport) {

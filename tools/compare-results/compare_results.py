@@ -123,6 +123,12 @@ CASES = {
                                                      "simulation: {t_end: 2, output_step: 0.01, rtol: 1.0e-6, "
                                                      "formulation: constrained}\n"),
                                       ("mbs-run", ["constrained.yaml", "-o", "constrained.h5", "-q"])]),
+    "tree_3d_formulations": ({"tests/data/mbs-run/tree_3d.yaml": "scene.yaml"},
+                             [("mbs-run", ["scene.yaml", "-o", "tree.h5", "-q"]),
+                              _scene_variant("scene.yaml", "constrained.yaml",
+                                             "simulation: {t_end: 1.0, output_step: 0.01, rtol: 1.0e-8, "
+                                             "formulation: constrained}\n"),
+                              ("mbs-run", ["constrained.yaml", "-o", "constrained.h5", "-q"])]),
     # tests/data/sar: the rigid SAR reconstructions (closed loops, events, stops), whole runs.
     "sar_rigid_v1": ({"tests/data/sar/sar-rigid-scene-v1.yaml": "scene.yaml"},
                      [("mbs-run", ["scene.yaml", "-o", "r.h5", "-q", "--csv", "r.csv"])]),
