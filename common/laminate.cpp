@@ -1,6 +1,7 @@
 #include "common/laminate.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace fc {
 
@@ -48,8 +49,58 @@ Eigen::Matrix2d rotatedTransverseShear(const Material& m, double angle_rad) {
   return shearStiffness(plyStiffnessInLaminateAxes(m.C, angle_rad));
 }
 
+TransverseShear transverseShearFromStacking(const Laminate& lam, const MaterialLibrary& materials) {
+  // Per ply: bottom z, thickness, Qbar_11 and Qbar_22 (bending stiffness about
+  // each axis), and the ply's shear stiffness in laminate axes.
+  struct Layer {
+    double z0, t;
+    double E[2];
+    Eigen::Matrix2d G;
+  };
+  std::vector<Layer> layers;
+  double z = -0.5 * lam.thickness();
+  for (const auto& ply : lam.plies) {
+    const auto it = materials.find(ply.material);
+    if (it == materials.end())
+      throw std::invalid_argument("laminate '" + lam.name + "': unknown material '" + ply.material + "'");
+    const double a = ply.angle_deg * kPi / 180.0;
+    const Eigen::Matrix3d Q = rotatedReducedStiffness(it->second, a);
+    layers.push_back({z, ply.thickness, {Q(0, 0), Q(1, 1)}, rotatedTransverseShear(it->second, a)});
+    z += ply.thickness;
+  }
+  // Three-point Gauss-Legendre on each ply: g^2 is a quartic in z, integrated exactly.
+  const double gx[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  TransverseShear out;
+  Eigen::Matrix2d summed = Eigen::Matrix2d::Zero();
+  for (const Layer& L : layers) summed += L.G * L.t;
+  for (int d = 0; d < 2; ++d) {
+    // Neutral axis of cylindrical bending about this axis (N = 0): z_n.
+    double s0 = 0, s1 = 0;
+    for (const Layer& L : layers) {
+      s0 += L.E[d] * L.t;
+      s1 += L.E[d] * L.t * (L.z0 + 0.5 * L.t);
+    }
+    const double zn = s1 / s0;
+    double R = 0, I = 0, g0 = 0;  // g0 = g at the ply's bottom; g(-h/2) = 0
+    for (const Layer& L : layers) {
+      const double a0 = L.z0 - zn, a1 = a0 + L.t;
+      R += L.E[d] * (a1 * a1 * a1 - a0 * a0 * a0) / 3;
+      for (int q = 0; q < 3; ++q) {
+        const double s = a0 + 0.5 * L.t * (1 + gx[q]);
+        const double g = g0 - 0.5 * L.E[d] * (s * s - a0 * a0);
+        I += 0.5 * L.t * gw[q] * g * g / L.G(d, d);
+      }
+      g0 -= 0.5 * L.E[d] * (a1 * a1 - a0 * a0);
+    }
+    out.factor(d) = R * R / I / summed(d, d);
+  }
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) out.As(i, j) = std::sqrt(out.factor(i) * out.factor(j)) * summed(i, j);
+  return out;
+}
+
 LaminateStiffness laminateStiffness(const Laminate& lam, const MaterialLibrary& materials,
-                                    double shear_correction) {
+                                    std::optional<double> shear_correction) {
   LaminateStiffness out;
   const double h = lam.thickness();
   out.thickness = h;
@@ -67,12 +118,13 @@ LaminateStiffness laminateStiffness(const Laminate& lam, const MaterialLibrary& 
     out.A += Q * h1;
     out.B += Q * h2;
     out.D += Q * h3;
-    out.As += shear_correction * rotatedTransverseShear(m, a) * h1;
+    if (shear_correction) out.As += *shear_correction * rotatedTransverseShear(m, a) * h1;
     out.mass_per_area += m.rho * h1;
     out.first_moment += m.rho * h2;
     out.rotary_per_area += m.rho * h3;
     z0 = z1;
   }
+  if (!shear_correction) out.As = transverseShearFromStacking(lam, materials).As;
   return out;
 }
 

@@ -4,6 +4,7 @@
 // The ABD and transverse-shear matrices here are exactly what fe-prep's shells use.
 #include <Eigen/Dense>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,10 +45,29 @@ Eigen::Matrix3d rotatedReducedStiffness(const Material& m, double angle_rad);
 // Transverse shear stiffness of a ply in laminate axes, order [xz, yz].
 Eigen::Matrix2d rotatedTransverseShear(const Material& m, double angle_rad);
 
-// shear_correction multiplies the transverse shear stiffness (5/6 by default,
-// exact for a homogeneous plate in the energy sense).
+// Transverse shear stiffness of a laminate from its stacking (docs/laminate-shear.md):
+// for bending about each laminate
+// axis in turn (cylindrical bending, Whitney 1973; Vlachoutsis 1992) the bending
+// stress sigma = Qbar_aa (z - z_n) kappa gives, by equilibrium, the piecewise
+// quadratic shear stress tau(z) = Q g(z) / R, and the stiffness A_aa = R^2 / I with
+//   z_n = int Qbar_aa z dz / int Qbar_aa dz,   R = int Qbar_aa (z - z_n)^2 dz,
+//   g(z) = - int_{-h/2}^{z} Qbar_aa (s - z_n) ds,   I = int g^2 / G_az dz
+// equates the shear strain energy of tau(z) with that of a constant shear strain.
+// The factors k_a = A_aa / int G_az dz scale the summed ply shear stiffness,
+// As_ab = sqrt(k_a k_b) int G_ab dz (so As stays symmetric positive definite and
+// the xz-yz coupling of off-axis plies is kept). A homogeneous plate gives k = 5/6
+// exactly; thin stiff faces on a soft core give sandwich theory's G_c d^2 / c.
+struct TransverseShear {
+  Eigen::Matrix2d As = Eigen::Matrix2d::Zero();   // [Q_x, Q_y] = As [gamma_xz, gamma_yz]
+  Eigen::Vector2d factor = Eigen::Vector2d::Zero();  // k_x, k_y against the summed G t
+};
+TransverseShear transverseShearFromStacking(const Laminate& lam, const MaterialLibrary& materials);
+
+// With shear_correction given, As is that factor times the summed ply shear
+// stiffness (a user's or a Nastran PSHELL's TS/T); without it, As follows from the
+// stacking (transverseShearFromStacking), which for a homogeneous plate is 5/6.
 LaminateStiffness laminateStiffness(const Laminate& lam, const MaterialLibrary& materials,
-                                    double shear_correction = 5.0 / 6.0);
+                                    std::optional<double> shear_correction = std::nullopt);
 
 // A homogeneous single-material plate as a one-ply laminate.
 Laminate homogeneousLaminate(const std::string& material, double thickness);

@@ -1,5 +1,6 @@
 #include "common/materials.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -192,12 +193,26 @@ MaterialLibrary readMaterials(const InputNode& block) {
             node["G12"].asPositive(), node["G13"].asPositive(), node["G23"].asPositive(),
             node["nu12"].asDouble(), node["nu13"].asDouble(), node["nu23"].asDouble(),
             node["rho"].asPositive());
+      } else if (type == "honeycomb") {
+        // A sandwich core: through-thickness modulus E3 and transverse shear moduli
+        // G13 (ribbon, L) and G23 (W) govern; the in-plane moduli of a honeycomb
+        // are three orders below its shear moduli (Gibson & Ashby, Cellular
+        // Solids, 2nd ed., ch. 4) and default to 1e-3 min(G13, G23); Poisson
+        // ratios default to 0 (the cells' walls do not couple the directions).
+        node.allowKeys({"type", "E3", "G13", "G23", "rho", "E1", "E2", "G12", "nu12", "nu13", "nu23"});
+        const double G13 = node["G13"].asPositive(), G23 = node["G23"].asPositive();
+        const double soft = 1e-3 * std::min(G13, G23);
+        lib[name] = makeOrthotropic(name, node.has("E1") ? node["E1"].asPositive() : soft,
+                                    node.has("E2") ? node["E2"].asPositive() : soft, node["E3"].asPositive(),
+                                    node.has("G12") ? node["G12"].asPositive() : soft, G13, G23,
+                                    node.number("nu12", 0.0), node.number("nu13", 0.0),
+                                    node.number("nu23", 0.0), node["rho"].asPositive());
       } else if (type == "anisotropic") {
         node.allowKeys({"type", "C", "rho", "strength"});
         lib[name] = makeAnisotropic(name, node["C"].asMatrix(6, 6), node["rho"].asPositive());
       } else {
         node["type"].fail("unknown material type '" + type +
-                          "'; expected isotropic, orthotropic or anisotropic");
+                          "'; expected isotropic, orthotropic, honeycomb or anisotropic");
       }
     } catch (const std::invalid_argument& e) {
       node.fail(e.what());

@@ -51,6 +51,8 @@ using MaterialLibrary = std::map<std::string, Material>;
 // Reads a `materials:` block (with `include: FILE`); bad entries raise InputError.
 //   {type: isotropic, E, nu, rho}
 //   {type: orthotropic, E1, E2, E3, G12, G13, G23, nu12, nu13, nu23, rho}
+//   {type: honeycomb, E3, G13, G23, rho} a sandwich core (orthotropic; optional
+//     E1, E2, G12 default to 1e-3 min(G13, G23), nu12, nu13, nu23 to 0)
 //   {type: anisotropic, C: 6x6 (Voigt, material axes), rho}
 // each optionally with strength: {Xt, Xc, Yt, Yc, S12} (Pa, all positive).
 MaterialLibrary readMaterials(const InputNode& block);

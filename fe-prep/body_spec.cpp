@@ -37,7 +37,9 @@ const Material& isotropicMaterial(const MaterialLibrary& lib, const InputNode& n
 // thickness; element kind; shear correction. The caller checks the keys.
 ShellProperty parseShellSection(const InputNode& s, const MaterialLibrary& materials, const LaminateLibrary& laminates) {
   ShellProperty p;
-  const double kappa = s.number("shear_correction", 5.0 / 6.0);
+  // Given, a factor on the summed ply shear stiffness; else As from the stacking.
+  std::optional<double> kappa;
+  if (s.has("shear_correction")) kappa = s["shear_correction"].asPositive();
   if (s.has("laminate")) {
     if (s.has("material") || s.has("thickness"))
       s["laminate"].fail("give either laminate: NAME or material: and thickness:, not both");

@@ -537,7 +537,7 @@ void Builder::readPcomp(const Card& k) {
   ShellProp sp;
   sp.pid = pid;
   sp.card = &k.c;
-  sp.p.laminate = laminateStiffness(L, library_, 5.0 / 6.0);
+  sp.p.laminate = laminateStiffness(L, library_);  // As from the stacking, as Nastran for PCOMP
   sp.p.plies = plyTable(L, library_);
   sp.p.laminate_name = L.name;
   sp.p.kind = fe::ShellKind::DST;

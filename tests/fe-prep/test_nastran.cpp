@@ -466,5 +466,41 @@ TEST(Nastran, BodyFileRecordsRegionsAndInspectListsThem) {
   }
 }
 
+// A sandwich PCOMP: aluminium faces (MAT1) on a honeycomb core given as a MAT8
+// with negligible in-plane moduli and the core's G1Z, G2Z. The laminate equals
+// the YAML route's (type: honeycomb), its transverse shear the stacking's
+// (docs/laminate-shear.md), not 5/6 of the summed G t.
+TEST(Nastran, PcompSandwichWithHoneycombCore) {
+  const std::string path = writeDeck("sandwich.bdf", R"($ sandwich plate
+GRID,1,,0.,0.,0.
+GRID,2,,1.,0.,0.
+GRID,3,,1.,1.,0.
+GRID,4,,0.,1.,0.
+MAT1,1,7.e10,,0.3,2700.
+MAT8,2,1.e5,1.e5,0.,1.e5,2.e8,1.e8,50.
+PCOMP,1,,,,,,,
++,1,0.001,0.,,2,0.02,0.,
++,1,0.001,0.
+CQUAD4,1,1,1,2,3,4
+)");
+  const NastranModel m = nastranModel(readNastranCards(path), unitSystem("m-kg-s"), {});
+  ASSERT_EQ(m.mesh.shell_properties.size(), 1u);
+  const LaminateStiffness& deck = m.mesh.shell_properties[0].laminate;
+  auto root = InputNode::loadString(R"(
+materials:
+  al: {type: isotropic, E: 70e9, nu: 0.3, rho: 2700}
+  core: {type: honeycomb, E3: 600e6, G13: 200e6, G23: 100e6, rho: 50, E1: 1e5, E2: 1e5, G12: 1e5}
+)");
+  const MaterialLibrary mats = readMaterials(root["materials"]);
+  const LaminateStiffness yaml =
+      laminateStiffness(Laminate{"sw", {{"al", 0.001, 0}, {"core", 0.02, 0}, {"al", 0.001, 0}}}, mats);
+  // Same plies, same formulas: round-off.
+  EXPECT_LT((deck.D - yaml.D).norm(), 1e-12 * yaml.D.norm());
+  EXPECT_LT((deck.As - yaml.As).norm(), 1e-12 * yaml.As.norm());
+  // Sandwich theory's G_c d^2 / c (4.41e6 N/m along x), a tenth of 5/6 sum G t (48.2e6 N/m).
+  EXPECT_NEAR(deck.As(0, 0), 2e8 * 0.021 * 0.021 / 0.02, 0.01 * deck.As(0, 0));
+  EXPECT_NEAR(deck.As(1, 1), 1e8 * 0.021 * 0.021 / 0.02, 0.01 * deck.As(1, 1));
+}
+
 }  // namespace
 }  // namespace fc::feprep::test

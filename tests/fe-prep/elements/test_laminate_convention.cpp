@@ -5,6 +5,8 @@
 // sign) are those of the library that feeds them in fe-prep.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/laminate.h"
 #include "laminates.h"
 
@@ -24,8 +26,16 @@ TEST(LaminateConvention, CommonLaminateMatchesTextbookFormulas) {
     lam.plies.push_back({"ply", t[k], ang[k]});
     ref_plies.push_back({E1, E2, G12, G12, G23, nu12, rho, t[k], ang[k]});
   }
-  const LaminateStiffness a = laminateStiffness(lam, lib);
+  // The explicit factor 5/6 on the summed ply shear (the textbook rule of
+  // laminates.cpp) checks the [xz, yz] order and the rotation of the shear.
+  const LaminateStiffness a = laminateStiffness(lam, lib, 5.0 / 6.0);
   const LaminateStiffness b = test::orthotropicLaminate(ref_plies);
+  // The default, from the stacking, scales the same summed matrix by sqrt(k_a k_b).
+  const TransverseShear st = transverseShearFromStacking(lam, lib);
+  Eigen::Matrix2d scaled = b.As * (6.0 / 5.0);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) scaled(i, j) *= std::sqrt(st.factor(i) * st.factor(j));
+  EXPECT_TRUE((laminateStiffness(lam, lib).As - scaled).cwiseAbs().maxCoeff() <= 1e-10 * scaled.cwiseAbs().maxCoeff());
   // Same formulas in double precision: agreement to ~1e-12 relative.
   auto close = [](const auto& x, const auto& y) {
     return (x - y).cwiseAbs().maxCoeff() <= 1e-10 * y.cwiseAbs().maxCoeff();
