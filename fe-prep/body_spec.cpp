@@ -265,10 +265,9 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
     g.units = b["units"].asString();
     const UnitSystem* u = findUnitSystem(g.units);
     if (!u) {
-      const std::string near = closestMatch(g.units, unitSystemNames());
       std::string all;
       for (const auto& n : unitSystemNames()) all += (all.empty() ? "" : ", ") + n;
-      b["units"].fail("unknown unit system '" + g.units + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+      b["units"].fail("unknown unit system '" + g.units + "'" + didYouMean(g.units, unitSystemNames()) +
                       "; expected one of " + all);
     }
     g.length_scale = u->length;
@@ -417,8 +416,8 @@ void parseMasses(const InputNode& b, BodySpec& spec, const std::set<std::string>
     if (at.isScalar()) {
       ma.interface = at.asString();
       if (!names.count(ma.interface)) {
-        const std::string near = closestMatch(ma.interface, std::vector<std::string>(names.begin(), names.end()));
-        at.fail("no interface '" + ma.interface + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+        at.fail("no interface '" + ma.interface + "'" +
+                didYouMean(ma.interface, std::vector<std::string>(names.begin(), names.end())) +
                 "; expected a point [x, y, z] or an interface name");
       }
       for (const auto& i : spec.interfaces)
