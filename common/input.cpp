@@ -184,8 +184,7 @@ InputNode InputNode::loadString(const std::string& text, const std::string& name
           names.push_back(k.name);
           list += (list.empty() ? "" : ", ") + k.name;
         }
-        const std::string near = closestMatch(n, names);
-        u.fail("unknown unit system '" + n + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+        u.fail("unknown unit system '" + n + "'" + didYouMean(n, names) +
                "; expected one of " + list + ", or {length: m, mass: kg, time: s}");
       }
       system = *found;

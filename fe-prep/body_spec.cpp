@@ -267,10 +267,9 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
     g.units = b["units"].asString();
     const UnitSystem* u = findUnitSystem(g.units);
     if (!u) {
-      const std::string near = closestMatch(g.units, unitSystemNames());
       std::string all;
       for (const auto& n : unitSystemNames()) all += (all.empty() ? "" : ", ") + n;
-      b["units"].fail("unknown unit system '" + g.units + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+      b["units"].fail("unknown unit system '" + g.units + "'" + didYouMean(g.units, unitSystemNames()) +
                       "; expected one of " + all);
     }
     g.length_scale = u->length;
@@ -315,188 +314,165 @@ GeneralMeshSpec parseGeneral(const InputNode& b, const MaterialLibrary& material
   return parseIgnore(b, g);
 }
 
-}  // namespace
+// body.interfaces, a deck's entry: {grid: ID} or {rbe: EID}; point, coupling
+// and patch come from the deck.
+InterfaceSpec parseDeckInterface(const std::string& key, const InputNode& entry, const BodySpec& spec) {
+  entry.allowKeys({"grid", "rbe"});
+  if (!spec.general || !spec.general->nastran)
+    entry.fail("{grid: ID} and {rbe: EID} name a Nastran deck's grids and rigid elements; this body has no deck "
+               "(mesh: {file: DECK.bdf})");
+  if (entry.has("grid") == entry.has("rbe")) entry.fail("expected one of grid: ID or rbe: EID");
+  InterfaceSpec i;
+  i.name = key;
+  i.node = entry;
+  const InputNode id = entry.has("grid") ? entry["grid"] : entry["rbe"];
+  const long v = id.asInt();
+  if (v <= 0) id.fail("expected an identification number > 0");
+  (entry.has("grid") ? i.grid : i.rbe) = v;
+  return i;
+}
 
-BodySpec parseBodySpec(const InputNode& root) {
-  root.allowKeys({"units", "materials", "laminates", "body"});
-  BodySpec spec;
-  MaterialLibrary materials;
-  LaminateLibrary laminates;
-  auto includeFile = [&](const char* block) {
-    if (root.has(block) && root[block].has("include"))
-      spec.input_files.push_back(resolveRelativeTo(root.file(), root[block]["include"].asString()));
-  };
-  includeFile("materials");
-  includeFile("laminates");
-  if (root.has("materials")) materials = readMaterials(root["materials"]);
-  if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
-
-  const InputNode b = root["body"];
-  b.allowKeys({"name", "shell", "beam", "mesh", "matrices", "units", "regions", "masses", "ignore", "interfaces",
-               "reference", "modes", "max_frequency_hz", "mass", "reduction", "geometric_stiffness"});
-  spec.name = b.has("name") ? b["name"].asName() : std::string("body");
-  if (int(b.has("shell")) + int(b.has("beam")) + int(b.has("mesh")) + int(b.has("matrices")) != 1)
-    b.fail("expected exactly one of shell:, beam:, mesh: {file: ...} (with regions:) or matrices:");
-  if (!b.has("mesh"))
-    for (const char* k : {"regions", "masses", "ignore"})
-      if (b.has(k)) b[k].fail(std::string(k) + " belongs to a body from a mesh file (mesh: {file: ...})");
-  if (b.has("units") && !b.has("mesh") && !b.has("matrices"))
-    b["units"].fail("body.units gives the units of a mesh file or of imported matrices; a shell: or beam: body "
-                    "is read in the units of its YAML file (units: at the top of the file)");
-  if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
-  else if (b.has("beam")) spec.beam = parseBeam(b["beam"], materials, spec);
-  else if (b.has("mesh")) spec.general = parseGeneral(b, materials, laminates, spec);
-  else spec.matrices = parseMatricesSpec(b, spec.input_files);
-  if (spec.matrices && b.has("mass"))
-    b["mass"].fail("an imported body uses its mass matrix as given (the nodal masses of /mass/nodal are fitted to it); drop mass:");
-  if (spec.matrices && b.has("geometric_stiffness"))
-    b["geometric_stiffness"].fail("geometric stiffness needs fe-prep's own elements; an imported body has only its matrices");
-
-  std::set<std::string> names;
-  if (b.has("interfaces")) {
-    const InputNode in = b["interfaces"];
-    if (!in.isMap()) in.fail("expected a map NAME: [x, y, z] or NAME: {point, coupling, nodes}");
-    for (const auto& key : in.keys()) {
-      const InputNode entry = in[key];
-      if (entry.isMap() && (entry.has("grid") || entry.has("rbe"))) {
-        // A Nastran deck's GRID or RBE2/RBE3 by id: point, coupling and patch come from the deck.
-        entry.allowKeys({"grid", "rbe"});
-        if (!spec.general || !spec.general->nastran)
-          entry.fail("{grid: ID} and {rbe: EID} name a Nastran deck's grids and rigid elements; this body has no deck "
-                     "(mesh: {file: DECK.bdf})");
-        if (entry.has("grid") == entry.has("rbe")) entry.fail("expected one of grid: ID or rbe: EID");
-        InterfaceSpec i;
-        i.name = key;
-        i.node = entry;
-        const InputNode id = entry.has("grid") ? entry["grid"] : entry["rbe"];
-        const long v = id.asInt();
-        if (v <= 0) id.fail("expected an identification number > 0");
-        (entry.has("grid") ? i.grid : i.rbe) = v;
-        names.insert(key);
-        spec.interfaces.push_back(i);
-        continue;
-      }
-      const InputNode p = entry.isMap() ? entry["point"] : entry;
-      InterfaceSpec i;
-      i.name = key;
-      i.position = p.asVector(3);
-      i.node = entry;
-      // Bodies are far smaller than a kilometre: 1.7e308 made the shapes infinite.
-      if (i.position.cwiseAbs().maxCoeff() > 1e3)
-        p.fail("expected coordinates within 1000 m of the body's origin (SI units)");
-      if (entry.isMap()) {
-        entry.allowKeys({"point", "coupling", "nodes"});
-        const std::string c = entry["coupling"].asString();
-        if (c == "rigid") i.coupling = Coupling::Rigid;
-        else if (c == "distributing") i.coupling = Coupling::Distributing;
-        else entry["coupling"].fail("unknown coupling '" + c + "', expected distributing (RBE3) or rigid (RBE2)");
-        const InputNode nodes = entry["nodes"];
-        i.nodes_node = nodes;
-        nodes.allowKeys({"within", "edge", "box", "set"});
-        if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME, set: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
-        if (nodes.has("within")) {
-          i.select = PatchSelect::Within;
-          i.within = nodes["within"].asLength(1e-9, kMaxBodyLength);
-        } else if (nodes.has("set")) {
-          // A node set of the mesh (a physical group); checked once the mesh is read.
-          i.select = PatchSelect::Set;
-          i.edge = nodes["set"].asString();
-        } else if (nodes.has("edge")) {
-          i.select = PatchSelect::Edge;
-          i.edge = nodes["edge"].asString();
-          std::vector<std::string> sets;
-          if (spec.beam) sets.assign(std::begin(kEnds), std::end(kEnds));
-          else if (spec.shell && spec.shell->rectangle) sets.assign(std::begin(kEdges), std::end(kEdges));
-          if (!sets.empty() && std::find(sets.begin(), sets.end(), i.edge) == sets.end())
-            nodes["edge"].fail("unknown edge '" + i.edge + "', expected " +
-                               (spec.beam ? "end_min or end_max" : "edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
-        } else {
-          i.select = PatchSelect::Box;
-          const InputNode box = nodes["box"];
-          if (box.size() != 2) box.fail("expected two corners [[x0, y0, z0], [x1, y1, z1]]");
-          i.box_lo = box.at(0).asVector(3);
-          i.box_hi = box.at(1).asVector(3);
-          if ((i.box_hi.array() < i.box_lo.array()).any()) box.fail("expected the lower corner first (x0 <= x1, y0 <= y1, z0 <= z1)");
-        }
-      }
-      if (spec.beam && (std::abs(i.position.x()) > spec.beam->length / 2 * (1 + 1e-9)))
-        p.fail("the point's projection on the beam axis, x = " + std::to_string(i.position.x()) +
-               ", is outside the beam [-length/2, length/2]");
-      if (spec.shell && spec.shell->rectangle &&
-          (std::abs(i.position.x()) > spec.shell->length / 2 * (1 + 1e-9) ||
-           std::abs(i.position.y()) > spec.shell->width / 2 * (1 + 1e-9)))
-        p.fail("the point's projection on the panel, (x, y), is outside the rectangle centred on the origin");
-      names.insert(key);
-      spec.interfaces.push_back(i);
-    }
+// An interface's patch: nodes: {within: R | edge: NAME | set: NAME | box: [[...], [...]]}.
+void parsePatch(const InputNode& nodes, const BodySpec& spec, InterfaceSpec& i) {
+  nodes.allowKeys({"within", "edge", "box", "set"});
+  if (nodes.keys().size() != 1) nodes.fail("expected exactly one of within: R, edge: NAME, set: NAME or box: [[x0, y0, z0], [x1, y1, z1]]");
+  if (nodes.has("within")) {
+    i.select = PatchSelect::Within;
+    i.within = nodes["within"].asLength(1e-9, kMaxBodyLength);
+  } else if (nodes.has("set")) {
+    // A node set of the mesh (a physical group); checked once the mesh is read.
+    i.select = PatchSelect::Set;
+    i.edge = nodes["set"].asString();
+  } else if (nodes.has("edge")) {
+    i.select = PatchSelect::Edge;
+    i.edge = nodes["edge"].asString();
+    std::vector<std::string> sets;
+    if (spec.beam) sets.assign(std::begin(kEnds), std::end(kEnds));
+    else if (spec.shell && spec.shell->rectangle) sets.assign(std::begin(kEdges), std::end(kEdges));
+    if (!sets.empty() && std::find(sets.begin(), sets.end(), i.edge) == sets.end())
+      nodes["edge"].fail("unknown edge '" + i.edge + "', expected " +
+                         (spec.beam ? "end_min or end_max" : "edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
+  } else {
+    i.select = PatchSelect::Box;
+    const InputNode box = nodes["box"];
+    if (box.size() != 2) box.fail("expected two corners [[x0, y0, z0], [x1, y1, z1]]");
+    i.box_lo = box.at(0).asVector(3);
+    i.box_hi = box.at(1).asVector(3);
+    if ((i.box_hi.array() < i.box_lo.array()).any()) box.fail("expected the lower corner first (x0 <= x1, y0 <= y1, z0 <= z1)");
   }
+}
 
-  // masses: [{at: [x, y, z] | INTERFACE, mass: m, inertia: [[...]]}]
-  if (b.has("masses")) {
-    if (!spec.general) b["masses"].fail("masses: belong to a body from a mesh file (mesh: {file: ...})");
-    const InputNode ms = b["masses"];
-    if (!ms.isSequence()) ms.fail("expected a list of {at: [x, y, z] or INTERFACE, mass: M, inertia: [[...], [...], [...]]}");
-    for (std::size_t k = 0; k < ms.size(); ++k) {
-      const InputNode m = ms.at(k);
-      m.allowKeys({"at", "mass", "inertia"});
-      MassSpec ma;
-      ma.node = m;
-      const InputNode at = m["at"];
-      if (at.isScalar()) {
-        ma.interface = at.asString();
-        if (!names.count(ma.interface)) {
-          const std::string near = closestMatch(ma.interface, std::vector<std::string>(names.begin(), names.end()));
-          at.fail("no interface '" + ma.interface + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
-                  "; expected a point [x, y, z] or an interface name");
-        }
-        for (const auto& i : spec.interfaces)
-          if (i.name == ma.interface) ma.at = i.position;
-      } else {
-        ma.at = at.asVector(3);
-        if (ma.at.cwiseAbs().maxCoeff() > 1e3) at.fail("expected coordinates within 1000 m of the body's origin (SI units)");
-      }
-      ma.mass = m["mass"].asInRange(0.0, 1e9, "kg");
-      if (m.has("inertia")) {
-        ma.inertia = m["inertia"].asMatrix(3, 3);
-        if ((ma.inertia - ma.inertia.transpose()).cwiseAbs().maxCoeff() > 1e-9 * ma.inertia.cwiseAbs().maxCoeff())
-          m["inertia"].fail("expected a symmetric inertia tensor");
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(ma.inertia);
-        if (es.eigenvalues().minCoeff() < -1e-12 * es.eigenvalues().cwiseAbs().maxCoeff())
-          m["inertia"].fail("expected a positive semi-definite inertia tensor (kg m^2, about the point)");
-      }
-      spec.general->masses.push_back(ma);
-    }
+// body.interfaces, a point: NAME: [x, y, z] or NAME: {point, coupling, nodes}.
+InterfaceSpec parsePointInterface(const std::string& key, const InputNode& entry, const BodySpec& spec) {
+  const InputNode p = entry.isMap() ? entry["point"] : entry;
+  InterfaceSpec i;
+  i.name = key;
+  i.position = p.asVector(3);
+  i.node = entry;
+  // Bodies are far smaller than a kilometre: 1.7e308 made the shapes infinite.
+  if (i.position.cwiseAbs().maxCoeff() > 1e3)
+    p.fail("expected coordinates within 1000 m of the body's origin (SI units)");
+  if (entry.isMap()) {
+    entry.allowKeys({"point", "coupling", "nodes"});
+    const std::string c = entry["coupling"].asString();
+    if (c == "rigid") i.coupling = Coupling::Rigid;
+    else if (c == "distributing") i.coupling = Coupling::Distributing;
+    else entry["coupling"].fail("unknown coupling '" + c + "', expected distributing (RBE3) or rigid (RBE2)");
+    i.nodes_node = entry["nodes"];
+    parsePatch(entry["nodes"], spec, i);
   }
+  if (spec.beam && (std::abs(i.position.x()) > spec.beam->length / 2 * (1 + 1e-9)))
+    p.fail("the point's projection on the beam axis, x = " + std::to_string(i.position.x()) +
+           ", is outside the beam [-length/2, length/2]");
+  if (spec.shell && spec.shell->rectangle &&
+      (std::abs(i.position.x()) > spec.shell->length / 2 * (1 + 1e-9) ||
+       std::abs(i.position.y()) > spec.shell->width / 2 * (1 + 1e-9)))
+    p.fail("the point's projection on the panel, (x, y), is outside the rectangle centred on the origin");
+  return i;
+}
 
-  // reference: free | {clamp: [...], pin: [...]}
-  if (b.has("reference")) {
-    const InputNode r = b["reference"];
-    if (r.isScalar()) {
-      if (r.asString() != "free") r.fail("expected free, or a map {clamp: [SETS], pin: [SETS]}");
+void parseInterfaces(const InputNode& b, BodySpec& spec, std::set<std::string>& names) {
+  if (!b.has("interfaces")) return;
+  const InputNode in = b["interfaces"];
+  if (!in.isMap()) in.fail("expected a map NAME: [x, y, z] or NAME: {point, coupling, nodes}");
+  for (const auto& key : in.keys()) {
+    const InputNode entry = in[key];
+    const bool deck = entry.isMap() && (entry.has("grid") || entry.has("rbe"));
+    spec.interfaces.push_back(deck ? parseDeckInterface(key, entry, spec) : parsePointInterface(key, entry, spec));
+    names.insert(key);
+  }
+}
+
+// masses: [{at: [x, y, z] | INTERFACE, mass: m, inertia: [[...]]}]
+void parseMasses(const InputNode& b, BodySpec& spec, const std::set<std::string>& names) {
+  if (!b.has("masses")) return;
+  if (!spec.general) b["masses"].fail("masses: belong to a body from a mesh file (mesh: {file: ...})");
+  const InputNode ms = b["masses"];
+  if (!ms.isSequence()) ms.fail("expected a list of {at: [x, y, z] or INTERFACE, mass: M, inertia: [[...], [...], [...]]}");
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const InputNode m = ms.at(k);
+    m.allowKeys({"at", "mass", "inertia"});
+    MassSpec ma;
+    ma.node = m;
+    const InputNode at = m["at"];
+    if (at.isScalar()) {
+      ma.interface = at.asString();
+      if (!names.count(ma.interface)) {
+        at.fail("no interface '" + ma.interface + "'" +
+                didYouMean(ma.interface, std::vector<std::string>(names.begin(), names.end())) +
+                "; expected a point [x, y, z] or an interface name");
+      }
+      for (const auto& i : spec.interfaces)
+        if (i.name == ma.interface) ma.at = i.position;
     } else {
-      r.allowKeys({"clamp", "pin", "free"});
-      std::vector<std::string> known(names.begin(), names.end());
-      if (spec.shell && spec.shell->rectangle) known.insert(known.end(), std::begin(kEdges), std::end(kEdges));
-      if (spec.beam) known.insert(known.end(), std::begin(kEnds), std::end(kEnds));
-      for (const char* kind : {"clamp", "pin"}) {
-        if (!r.has(kind)) continue;
-        const InputNode list = r[kind];
-        for (std::size_t i = 0; i < list.size(); ++i) {
-          const InputNode item = list.at(i);
-          const std::string set = item.asString();
-          // Geo files define their own sets (physical groups); checked after meshing.
-          const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.general || spec.matrices;
-          if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
-            item.fail("unknown set '" + set + "'" + didYouMean(set, known) +
-                      "; expected an interface name" +
-                      (spec.beam ? ", end_min or end_max" : ", edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
-          }
-          spec.reference.push_back({set, std::string(kind) == "clamp", item});
+      ma.at = at.asVector(3);
+      if (ma.at.cwiseAbs().maxCoeff() > 1e3) at.fail("expected coordinates within 1000 m of the body's origin (SI units)");
+    }
+    ma.mass = m["mass"].asInRange(0.0, 1e9, "kg");
+    if (m.has("inertia")) {
+      ma.inertia = m["inertia"].asMatrix(3, 3);
+      if ((ma.inertia - ma.inertia.transpose()).cwiseAbs().maxCoeff() > 1e-9 * ma.inertia.cwiseAbs().maxCoeff())
+        m["inertia"].fail("expected a symmetric inertia tensor");
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(ma.inertia);
+      if (es.eigenvalues().minCoeff() < -1e-12 * es.eigenvalues().cwiseAbs().maxCoeff())
+        m["inertia"].fail("expected a positive semi-definite inertia tensor (kg m^2, about the point)");
+    }
+    spec.general->masses.push_back(ma);
+  }
+}
+
+// reference: free | {clamp: [...], pin: [...]}
+void parseReference(const InputNode& b, BodySpec& spec, const std::set<std::string>& names) {
+  if (!b.has("reference")) return;
+  const InputNode r = b["reference"];
+  if (r.isScalar()) {
+    if (r.asString() != "free") r.fail("expected free, or a map {clamp: [SETS], pin: [SETS]}");
+  } else {
+    r.allowKeys({"clamp", "pin", "free"});
+    std::vector<std::string> known(names.begin(), names.end());
+    if (spec.shell && spec.shell->rectangle) known.insert(known.end(), std::begin(kEdges), std::end(kEdges));
+    if (spec.beam) known.insert(known.end(), std::begin(kEnds), std::end(kEnds));
+    for (const char* kind : {"clamp", "pin"}) {
+      if (!r.has(kind)) continue;
+      const InputNode list = r[kind];
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const InputNode item = list.at(i);
+        const std::string set = item.asString();
+        // Geo files define their own sets (physical groups); checked after meshing.
+        const bool open_set = (spec.shell && !spec.shell->rectangle) || spec.general || spec.matrices;
+        if (!open_set && std::find(known.begin(), known.end(), set) == known.end()) {
+          item.fail("unknown set '" + set + "'" + didYouMean(set, known) +
+                    "; expected an interface name" +
+                    (spec.beam ? ", end_min or end_max" : ", edge_xmin, edge_xmax, edge_ymin or edge_ymax"));
         }
+        spec.reference.push_back({set, std::string(kind) == "clamp", item});
       }
     }
   }
+}
 
+// modes: N | {count: N | keep: [...] | static_error: E, static_correction: ...} | max_frequency_hz: F
+void parseModes(const InputNode& b, BodySpec& spec) {
   if (b.has("modes") && b.has("max_frequency_hz")) b.fail("give either modes: N or max_frequency_hz: F, not both");
   if (b.has("modes") && b["modes"].isMap()) {
     const InputNode m = b["modes"];
@@ -553,6 +529,10 @@ BodySpec parseBodySpec(const InputNode& root) {
   } else {
     b.fail("missing the mode selection: expected modes: N or max_frequency_hz: F");
   }
+}
+
+// mass:, reduction:, geometric_stiffness: and what they ask of the rest.
+void parseMassAndReduction(const InputNode& b, BodySpec& spec) {
   // Default lumped_moments: the simulated body then has the exact mass, centre and
   // inertia (docs/fe-prep.md, "Mass and inertia"); plain row sums only when asked.
   const std::string mass = b.string("mass", "lumped_moments");
@@ -580,6 +560,55 @@ BodySpec parseBodySpec(const InputNode& root) {
       b["geometric_stiffness"].fail("geometric stiffness needs a reference that holds the body (reference: {clamp: [...]}): "
                                     "the stress of the inertial loads is the static response of the held body");
   }
+}
+
+// body: shell: | beam: | mesh: | matrices: and what each excludes.
+void parseBodyKind(const InputNode& b, const MaterialLibrary& materials, const LaminateLibrary& laminates, BodySpec& spec) {
+  if (int(b.has("shell")) + int(b.has("beam")) + int(b.has("mesh")) + int(b.has("matrices")) != 1)
+    b.fail("expected exactly one of shell:, beam:, mesh: {file: ...} (with regions:) or matrices:");
+  if (!b.has("mesh"))
+    for (const char* k : {"regions", "masses", "ignore"})
+      if (b.has(k)) b[k].fail(std::string(k) + " belongs to a body from a mesh file (mesh: {file: ...})");
+  if (b.has("units") && !b.has("mesh") && !b.has("matrices"))
+    b["units"].fail("body.units gives the units of a mesh file or of imported matrices; a shell: or beam: body "
+                    "is read in the units of its YAML file (units: at the top of the file)");
+  if (b.has("shell")) spec.shell = parseShell(b["shell"], materials, laminates, spec);
+  else if (b.has("beam")) spec.beam = parseBeam(b["beam"], materials, spec);
+  else if (b.has("mesh")) spec.general = parseGeneral(b, materials, laminates, spec);
+  else spec.matrices = parseMatricesSpec(b, spec.input_files);
+  if (spec.matrices && b.has("mass"))
+    b["mass"].fail("an imported body uses its mass matrix as given (the nodal masses of /mass/nodal are fitted to it); drop mass:");
+  if (spec.matrices && b.has("geometric_stiffness"))
+    b["geometric_stiffness"].fail("geometric stiffness needs fe-prep's own elements; an imported body has only its matrices");
+}
+
+}  // namespace
+
+BodySpec parseBodySpec(const InputNode& root) {
+  root.allowKeys({"units", "materials", "laminates", "body"});
+  BodySpec spec;
+  MaterialLibrary materials;
+  LaminateLibrary laminates;
+  auto includeFile = [&](const char* block) {
+    if (root.has(block) && root[block].has("include"))
+      spec.input_files.push_back(resolveRelativeTo(root.file(), root[block]["include"].asString()));
+  };
+  includeFile("materials");
+  includeFile("laminates");
+  if (root.has("materials")) materials = readMaterials(root["materials"]);
+  if (root.has("laminates")) laminates = readLaminates(root["laminates"], materials);
+
+  const InputNode b = root["body"];
+  b.allowKeys({"name", "shell", "beam", "mesh", "matrices", "units", "regions", "masses", "ignore", "interfaces",
+               "reference", "modes", "max_frequency_hz", "mass", "reduction", "geometric_stiffness"});
+  spec.name = b.has("name") ? b["name"].asName() : std::string("body");
+  parseBodyKind(b, materials, laminates, spec);
+  std::set<std::string> names;  // the interfaces' names, for masses: and reference:
+  parseInterfaces(b, spec, names);
+  parseMasses(b, spec, names);
+  parseReference(b, spec, names);
+  parseModes(b, spec);
+  parseMassAndReduction(b, spec);
   if (spec.general && spec.general->nastran) applyNastranDeck(spec);
   return spec;
 }

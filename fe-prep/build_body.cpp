@@ -420,23 +420,70 @@ double peakRssMb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
 }
 
-BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options) {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  const bool quiet = options.quiet || rank != 0;
+namespace {
+
+// Everything buildFlexBody's stages hand to one another, in the order the
+// stages fill it. One per build, never copied (the element kernel refers to it).
+struct BuildState {
+  BuildState(MPI_Comm c, const BodySpec& s, const BuildOptions& o) : comm(c), spec(s), options(o) {
+    MPI_Comm_rank(comm, &rank);
+    quiet = options.quiet || rank != 0;
+  }
+  BuildState(const BuildState&) = delete;
+  BuildState& operator=(const BuildState&) = delete;
+
+  MPI_Comm comm;
+  const BodySpec& spec;
+  const BuildOptions& options;
+  int rank = 0;
+  bool quiet = true;
   BuildResult res;
   Stopwatch sw;
 
-  // --- meshing
-  sw.start();
-  Progress pmesh("meshing", 1.0, quiet);
+  // 1. the mesh (or the imported model, whose mesh it is)
+  std::optional<ImportedModel> imported;
+  Mesh mesh;
+  // The assembly's mesh: for an imported body its coupled node pairs are the "elements".
+  const Mesh& assemblyMesh() const { return imported ? imported->pairs : mesh; }
+  // Lumped and point masses are node-local: M gets its own pattern (an
+  // imported M may couple nodes).
+  bool nodalMass() const { return spec.lumped && !imported; }
+
+  // 2. interfaces and reference conditions: on an interface's point (through its
+  // node, its rigid patch's master, or its distributing patch), or on every node of a set
+  std::vector<MeshInterface> interfaces;
+  std::vector<PointCondition> conditions, rigid_conditions;
+  std::vector<RigidCoupling> couplings;
+  std::vector<PatchCondition> patch_conditions;
+  DofMap map;
+  Eigen::MatrixXd rigid;  // the rigid motions the reference leaves, reduced DOF
+
+  // 3. assembly: each element with its own property and frame (mesh.h); point masses last
+  long n_tri = 0, n_beam = 0, n_el = 0;
+  ElementKernel kernel;
+  AssembledSystem sys;
+  Eigen::VectorXd mass_moved;  // the moment correction added to the translational masses (lumped_moments)
+
+  // 4. static responses and eigenmodes
+  bool inertia_relief = false, static_check = false;
+  std::vector<Eigen::VectorXd> compliance;
+  Eigen::MatrixXd loads, u;  // unit loads at every interface and the body's static responses (full DOF)
+  Eigen::Vector2d compliance_scale = Eigen::Vector2d::Zero();
+  ModalResult modal;
+};
+
+// ---- 1. mesh
+
+void meshStage(BuildState& s) {
+  s.sw.start();
+  Progress pmesh("meshing", 1.0, s.quiet);
   pmesh.update(0.0);
   // An imported body (matrices:) reads its model instead of meshing (fe-prep/import/).
-  std::optional<ImportedModel> imported;
-  if (spec.matrices) imported = importStage(comm, spec, quiet);
-  const Mesh mesh = imported ? imported->mesh : meshBody(comm, spec, quiet);
+  if (s.spec.matrices) s.imported = importStage(s.comm, s.spec, s.quiet);
+  s.mesh = s.imported ? s.imported->mesh : meshBody(s.comm, s.spec, s.quiet);
+  const Mesh& mesh = s.mesh;
   std::ostringstream mdesc;
-  if (imported) mdesc << "(" << mesh.nodeCount() << " nodes, " << imported->source_dofs << " imported DOF)";
+  if (s.imported) mdesc << "(" << mesh.nodeCount() << " nodes, " << s.imported->source_dofs << " imported DOF)";
   else {
     mdesc << "(" << mesh.nodeCount() << " nodes";
     if (!mesh.triangles.empty()) mdesc << ", " << mesh.triangles.size() << " triangles";
@@ -444,41 +491,46 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     mdesc << ")";
   }
   pmesh.finish(mdesc.str());
-  res.stages.push_back({"meshing", sw.seconds(), sw.cpu(), peakRssMb(), 0.0});
+  s.res.stages.push_back({"meshing", s.sw.seconds(), s.sw.cpu(), peakRssMb(), 0.0});
+}
 
-  // --- interfaces and reference conditions
-  sw.start();
-  FlexBody& body = res.body;
+// ---- 2. interfaces and reference conditions
+
+void resolveInterfaces(BuildState& s) {
+  const BodySpec& spec = s.spec;
+  FlexBody& body = s.res.body;
   body.name = spec.name;
-  body.nodes = mesh.nodes;
-  std::vector<MeshInterface> mesh_interfaces;
+  body.nodes = s.mesh.nodes;
   for (const auto& i : spec.interfaces) {
     Eigen::Vector3d projection = i.position;
     if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
     else if (spec.shell && spec.shell->rectangle) projection.z() = 0.0;
-    mesh_interfaces.push_back(resolveInterface(mesh, i, projection));
-    if (imported) {
-      const std::string note = checkImportedInterface(*imported, mesh_interfaces.back(), i);
-      if (!note.empty() && !quiet && rank == 0) std::printf("  %s\n", note.c_str());
+    s.interfaces.push_back(resolveInterface(s.mesh, i, projection));
+    if (s.imported) {
+      const std::string note = checkImportedInterface(*s.imported, s.interfaces.back(), i);
+      if (!note.empty() && !s.quiet && s.rank == 0) std::printf("  %s\n", note.c_str());
     }
     FlexInterface fi;
     fi.name = i.name;
-    fi.node = mesh_interfaces.back().node;
+    fi.node = s.interfaces.back().node;
     fi.position = i.position;
     body.interfaces.push_back(fi);
   }
-  // Reference conditions: on an interface's point (through its node, its rigid
-  // patch's master, or its distributing patch), or on every node of a set.
-  std::vector<PointCondition> conditions, rigid_conditions;
-  std::vector<RigidCoupling> couplings;
-  std::vector<PatchCondition> patch_conditions;
+}
+
+void referenceStage(BuildState& s) {
+  s.sw.start();
+  resolveInterfaces(s);
+  const BodySpec& spec = s.spec;
+  const Mesh& mesh = s.mesh;
+  const std::vector<MeshInterface>& mesh_interfaces = s.interfaces;
   std::map<std::string, bool> held_distributing;  // name -> clamp
   for (const auto& mi : mesh_interfaces)
     if (mi.coupling == Coupling::Rigid) {
       RigidCoupling rc{mi.node, {}};
       for (long k : mi.nodes)
         if (k != mi.node) rc.slaves.push_back(k);
-      couplings.push_back(rc);
+      s.couplings.push_back(rc);
     }
   for (const auto& r : spec.reference) {
     auto it = std::find_if(mesh_interfaces.begin(), mesh_interfaces.end(),
@@ -487,109 +539,107 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       if (it->coupling == Coupling::Distributing) {
         held_distributing[it->name] = held_distributing[it->name] || r.clamp;
       } else {
-        conditions.push_back({it->node, it->point, r.clamp});
-        rigid_conditions.push_back(conditions.back());
+        s.conditions.push_back({it->node, it->point, r.clamp});
+        s.rigid_conditions.push_back(s.conditions.back());
       }
       continue;
     }
-    auto s = mesh.sets.find(r.set);
-    if (s == mesh.sets.end() || s->second.empty()) {
+    auto set = mesh.sets.find(r.set);
+    if (set == mesh.sets.end() || set->second.empty()) {
       std::vector<std::string> known;
       for (const auto& kv : mesh.sets) known.push_back(kv.first);
-      for (const auto& f : body.interfaces) known.push_back(f.name);
+      for (const auto& f : s.res.body.interfaces) known.push_back(f.name);
       r.node.fail("the mesh has no node set or interface '" + r.set + "'" + didYouMean(r.set, known));
     }
-    for (long n : s->second) {
+    for (long n : set->second) {
       // A solid node's rotations are no DOF: clamping it is pinning it.
-      conditions.push_back({n, mesh.nodes.row(n).transpose(), r.clamp && !(imported && imported->solid[static_cast<std::size_t>(n)])});
-      rigid_conditions.push_back(conditions.back());
+      s.conditions.push_back({n, mesh.nodes.row(n).transpose(), r.clamp && !(s.imported && s.imported->solid[static_cast<std::size_t>(n)])});
+      s.rigid_conditions.push_back(s.conditions.back());
     }
   }
   for (const auto& [name, clamp] : held_distributing) {
     const MeshInterface& mi = *std::find_if(mesh_interfaces.begin(), mesh_interfaces.end(),
                                             [&](const MeshInterface& f) { return f.name == name; });
-    patch_conditions.push_back({mi.nodes, clamp ? mi.W : Eigen::MatrixXd(mi.W.topRows(3))});
-    rigid_conditions.push_back({-1, mi.point, clamp});
+    s.patch_conditions.push_back({mi.nodes, clamp ? mi.W : Eigen::MatrixXd(mi.W.topRows(3))});
+    s.rigid_conditions.push_back({-1, mi.point, clamp});
   }
-  DofMap map;
   try {
-    map = buildDofMap(mesh, conditions, couplings, patch_conditions, options.patch_hold);
-    if (imported) holdSolidRotations(map, imported->solid);
+    s.map = buildDofMap(mesh, s.conditions, s.couplings, s.patch_conditions, s.options.patch_hold);
+    if (s.imported) holdSolidRotations(s.map, s.imported->solid);
   } catch (const std::invalid_argument& e) {
     const InputNode where = spec.reference.empty() ? spec.interfaces.front().node : spec.reference.front().node;
     where.fail(std::string("cannot apply the interfaces and reference conditions: ") + e.what());
   }
-  const Eigen::MatrixXd rigid_full = admissibleRigidModes(mesh, rigid_conditions);
-  Eigen::MatrixXd rigid(map.reduced, rigid_full.cols());
-  for (long j = 0; j < rigid_full.cols(); ++j) rigid.col(j) = map.restrict(rigid_full.col(j));
-  res.dofs = 6 * mesh.nodeCount();
-  res.reduced_dofs = map.constrainedDofs();
-  res.rigid_removed = rigid.cols();
+  const Eigen::MatrixXd rigid_full = admissibleRigidModes(mesh, s.rigid_conditions);
+  s.rigid.resize(s.map.reduced, rigid_full.cols());
+  for (long j = 0; j < rigid_full.cols(); ++j) s.rigid.col(j) = s.map.restrict(rigid_full.col(j));
+  s.res.dofs = 6 * mesh.nodeCount();
+  s.res.reduced_dofs = s.map.constrainedDofs();
+  s.res.rigid_removed = s.rigid.cols();
+}
 
-  // --- assembly
-  // The assembly's mesh: for an imported body its coupled node pairs are the "elements".
-  const Mesh& amesh = imported ? imported->pairs : mesh;
-  // Each element with its own property and frame (mesh.h); point masses last.
-  const long n_tri = static_cast<long>(amesh.triangles.size());
-  const long n_beam = static_cast<long>(amesh.beams.size());
-  const long n_el = n_tri + n_beam + (imported ? 0L : static_cast<long>(mesh.point_masses.size()));
-  ElementKernel kernel = [&](long e, ElementResult& out) {
-    if (imported) {
-      imported->pairMatrices(e, out);
-    } else if (e < n_tri) {
-      const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
-      const ShellProperty& p = mesh.shellProperty(e);
-      const fe::ShellMatrices m =
-          fe::shellTriangle(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)]);
-      out.nodes.assign(t.begin(), t.end());
-      out.K = m.K;
-      out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
-      out.lumped = m.lumped;
-    } else if (e < n_tri + n_beam) {
-      const long k = e - n_tri;
-      const auto& b = mesh.beams[static_cast<std::size_t>(k)];
-      const BeamProperty& p = mesh.beamProperty(k);
-      const fe::BeamMatrices m = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
-                                                    mesh.beam_x2[static_cast<std::size_t>(k)], p.Ks, p.Ms);
-      out.nodes.assign(b.begin(), b.end());
-      out.K = m.K;
-      out.M = spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
-      out.lumped = m.lumped;
-    } else {
-      // A concentrated mass at its node: m on the translations, its inertia
-      // tensor (about the node) on the rotations, in full in both mass kinds;
-      // the lumped diagonal keeps the inertia's diagonal (/mass/nodal).
-      const PointMass& pm = mesh.point_masses[static_cast<std::size_t>(e - n_tri - n_beam)];
-      out.nodes = {pm.node};
-      out.K = Eigen::MatrixXd::Zero(6, 6);
-      out.M = Eigen::MatrixXd::Zero(6, 6);
-      out.M.topLeftCorner(3, 3).diagonal().setConstant(pm.mass);
-      out.M.bottomRightCorner(3, 3) = pm.inertia;
-      out.lumped = out.M.diagonal();
-    }
-  };
-  Progress pasm("assembly", 1.0, quiet);
-  AssembledSystem sys;
-  // Lumped and point masses are node-local: M gets its own, smaller pattern.
-  const bool nodal_mass = spec.lumped && !imported;
-  assemble(comm, amesh, map, n_el, kernel, sys, [&](double f) { pasm.update(f); }, nodal_mass);
-  // mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
-  // second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
-  // mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
-  Eigen::VectorXd mass_moved;  // the moment correction added to the translational masses (lumped_moments)
-  if (imported) {
+// ---- 3. assembly
+
+// The element kernel of the assembly (and of the Craig-Bampton lifts' K l_j):
+// element e's matrices, its property and frame from the mesh.
+void elementMatrices(const BuildState& s, long e, ElementResult& out) {
+  const Mesh& mesh = s.mesh;
+  const long n_tri = s.n_tri, n_beam = s.n_beam;
+  if (s.imported) {
+    s.imported->pairMatrices(e, out);
+  } else if (e < n_tri) {
+    const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
+    Eigen::Matrix3d xyz;
+    for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
+    const ShellProperty& p = mesh.shellProperty(e);
+    const fe::ShellMatrices m =
+        fe::shellTriangle(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)]);
+    out.nodes.assign(t.begin(), t.end());
+    out.K = m.K;
+    out.M = s.spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
+    out.lumped = m.lumped;
+  } else if (e < n_tri + n_beam) {
+    const long k = e - n_tri;
+    const auto& b = mesh.beams[static_cast<std::size_t>(k)];
+    const BeamProperty& p = mesh.beamProperty(k);
+    const fe::BeamMatrices m = fe::timoshenkoBeam(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                                  mesh.beam_x2[static_cast<std::size_t>(k)], p.Ks, p.Ms);
+    out.nodes.assign(b.begin(), b.end());
+    out.K = m.K;
+    out.M = s.spec.lumped ? Eigen::MatrixXd(m.lumped.asDiagonal()) : Eigen::MatrixXd(m.M);
+    out.lumped = m.lumped;
+  } else {
+    // A concentrated mass at its node: m on the translations, its inertia
+    // tensor (about the node) on the rotations, in full in both mass kinds;
+    // the lumped diagonal keeps the inertia's diagonal (/mass/nodal).
+    const PointMass& pm = mesh.point_masses[static_cast<std::size_t>(e - n_tri - n_beam)];
+    out.nodes = {pm.node};
+    out.K = Eigen::MatrixXd::Zero(6, 6);
+    out.M = Eigen::MatrixXd::Zero(6, 6);
+    out.M.topLeftCorner(3, 3).diagonal().setConstant(pm.mass);
+    out.M.bottomRightCorner(3, 3) = pm.inertia;
+    out.lumped = out.M.diagonal();
+  }
+}
+
+// mass: lumped_moments: row-sum nodal masses moved to reproduce the exact
+// second moments (mass_lumping.h), in the eigenproblem and in /mass/nodal;
+// mass: consistent: in /mass/nodal only (the invariants), M stays consistent.
+void lumpNodalMasses(BuildState& s) {
+  const Mesh& mesh = s.mesh;
+  AssembledSystem& sys = s.sys;
+  BuildResult& res = s.res;
+  if (s.imported) {
     // The imported M stays as given in the eigenproblem; the nodal masses of
     // /mass/nodal are fitted to its rigid-body projection (imported_body.h).
-    const ImportedLumping il = importedLumping(comm, *imported, quiet);
+    const ImportedLumping il = importedLumping(s.comm, *s.imported, s.quiet);
     res.moment_lumping = il.applied;
     res.lumping_min_ratio = il.min_ratio;
     for (long k = 0; k < mesh.nodeCount(); ++k) {
       sys.lumped.segment<3>(6 * k).setConstant(il.nodal(k, 0));
       sys.lumped.segment<3>(6 * k + 3) = il.nodal.block<1, 3>(k, 1).transpose();
     }
-  } else if (spec.moment_lumping) {
+  } else if (s.spec.moment_lumping) {
     const long n = mesh.nodeCount();
     Eigen::VectorXd m0(n);
     for (long k = 0; k < n; ++k) m0(k) = sys.lumped(6 * k);
@@ -597,64 +647,82 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     const RigidProperties mid = meshProperties(mesh, true);
     const MomentLumping ml = momentConsistentMasses(mesh.nodes, m0, mid.mass, mid.first_moment, mid.second_moment);
     res.moment_lumping = ml.applied;
-    if (!ml.applied && rank == 0)
+    if (!ml.applied && s.rank == 0)
       std::fprintf(stderr, "fe-prep: warning: mass: lumped_moments not applied (a nodal mass would fall to %.2f of its row-sum value); row-sum lumped masses kept\n", ml.min_ratio);
     res.lumping_min_ratio = ml.min_ratio;
     if (ml.applied) {
       const Eigen::VectorXd dm = ml.masses - m0;
-      if (spec.lumped) addNodalTranslationalMass(comm, mesh, map, dm, sys.M);
-      if (spec.lumped) mass_moved = dm;
+      if (s.spec.lumped) addNodalTranslationalMass(s.comm, mesh, s.map, dm, sys.M);
+      if (s.spec.lumped) s.mass_moved = dm;
       for (long k = 0; k < n; ++k) sys.lumped.segment<3>(6 * k).array() += dm(k);
     }
   }
-  pasm.finish("(" + std::to_string(map.constrainedDofs()) + " DOF)");
-  res.stages.push_back({"assembly", sw.seconds(), sw.cpu(), peakRssMb(), 0.0});
+}
 
-  // --- eigen-solve
-  sw.start();
-  Progress peig("eigen-solve", 1.0, quiet);
-  // MUMPS's estimate of the factorisation of K (static responses, eigen-solve),
-  // before the first one starts; refused when over what is left.
-  const std::string factorisation = checkFactorisationMemory(sys.K, "the stiffness");
-  if (!factorisation.empty()) peig.update(0.0, factorisation);
-  // Static deflection of every interface under unit loads (static_response.h):
-  // the yardstick of the modes' truncation. Where the reference holds the body,
-  // always; where rigid motions are left free, with inertia relief (the
-  // deflection relative to the rigid motion, the sum over every elastic mode)
-  // and only when a static_error or static_correction asks for it.
-  const bool inertia_relief = rigid.cols() > 0 && (spec.static_error > 0 || spec.static_correction);
-  const bool static_check = !spec.craig_bampton && !mesh_interfaces.empty() && (rigid.cols() == 0 || inertia_relief);
-  std::vector<Eigen::VectorXd> compliance;
-  Eigen::MatrixXd loads, u;  // unit loads at every interface and the body's static responses (full DOF)
-  if (static_check) {
-    loads.resize(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
+void assemblyStage(BuildState& s) {
+  const Mesh& amesh = s.assemblyMesh();
+  s.n_tri = static_cast<long>(amesh.triangles.size());
+  s.n_beam = static_cast<long>(amesh.beams.size());
+  s.n_el = s.n_tri + s.n_beam + (s.imported ? 0L : static_cast<long>(s.mesh.point_masses.size()));
+  s.kernel = [&s](long e, ElementResult& out) { elementMatrices(s, e, out); };
+  Progress pasm("assembly", 1.0, s.quiet);
+  // Lumped and point masses are node-local: M gets its own, smaller pattern.
+  assemble(s.comm, amesh, s.map, s.n_el, s.kernel, s.sys, [&](double f) { pasm.update(f); }, s.nodalMass());
+  lumpNodalMasses(s);
+  pasm.finish("(" + std::to_string(s.map.constrainedDofs()) + " DOF)");
+  s.res.stages.push_back({"assembly", s.sw.seconds(), s.sw.cpu(), peakRssMb(), 0.0});
+}
+
+// ---- 4. static responses, eigen-solve and keep:
+
+// Static deflection of every interface under unit loads (static_response.h):
+// the yardstick of the modes' truncation. Where the reference holds the body,
+// always; where rigid motions are left free, with inertia relief (the
+// deflection relative to the rigid motion, the sum over every elastic mode)
+// and only when a static_error or static_correction asks for it.
+void staticResponses(BuildState& s) {
+  const BodySpec& spec = s.spec;
+  const Mesh& mesh = s.mesh;
+  const std::vector<MeshInterface>& mesh_interfaces = s.interfaces;
+  s.inertia_relief = s.rigid.cols() > 0 && (spec.static_error > 0 || spec.static_correction);
+  s.static_check = !spec.craig_bampton && !mesh_interfaces.empty() && (s.rigid.cols() == 0 || s.inertia_relief);
+  if (s.static_check) {
+    s.loads.resize(6 * mesh.nodeCount(), 6 * static_cast<long>(mesh_interfaces.size()));
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
-      loads.middleCols(6 * static_cast<long>(k), 6) = interfaceLoads(mesh_interfaces[k], mesh);
-    u = inertia_relief ? solveInertiaRelief(comm, sys.K, sys.M, map, rigid, loads) : solveStatic(comm, sys.K, map, loads);
+      s.loads.middleCols(6 * static_cast<long>(k), 6) = interfaceLoads(mesh_interfaces[k], mesh);
+    s.u = s.inertia_relief ? solveInertiaRelief(s.comm, s.sys.K, s.sys.M, s.map, s.rigid, s.loads)
+                           : solveStatic(s.comm, s.sys.K, s.map, s.loads);
     for (std::size_t k = 0; k < mesh_interfaces.size(); ++k)
-      compliance.push_back(referencePointShapes(mesh_interfaces[k], mesh, u.middleCols(6 * static_cast<long>(k), 6)).diagonal());
+      s.compliance.push_back(referencePointShapes(mesh_interfaces[k], mesh, s.u.middleCols(6 * static_cast<long>(k), 6)).diagonal());
   } else if (spec.static_error > 0) {
     spec.modes_node.fail("modes: {static_error: ...} needs interfaces: the unit loads act there");
   }
-  Eigen::Vector2d compliance_scale = Eigen::Vector2d::Zero();
-  for (const auto& c : compliance)
-    compliance_scale = compliance_scale.cwiseMax(Eigen::Vector2d(c.head<3>().maxCoeff(), c.tail<3>().maxCoeff()));
-  auto truncations = [&](const ModalResult& m) {
-    std::vector<StaticTruncation> t;
-    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
-      Eigen::MatrixXd full(6 * mesh.nodeCount(), m.eigenvalues.size());
-      for (long j = 0; j < m.eigenvalues.size(); ++j) full.col(j) = map.expand(m.vectors.col(j));
-      t.push_back(staticTruncation(compliance[k], referencePointShapes(mesh_interfaces[k], mesh, full), m.eigenvalues,
-                                   compliance_scale));
-    }
-    return t;
-  };
+  for (const auto& c : s.compliance)
+    s.compliance_scale = s.compliance_scale.cwiseMax(Eigen::Vector2d(c.head<3>().maxCoeff(), c.tail<3>().maxCoeff()));
+}
+
+// How much of each interface's static response the modes `m` miss.
+std::vector<StaticTruncation> truncations(const BuildState& s, const ModalResult& m) {
+  std::vector<StaticTruncation> t;
+  for (std::size_t k = 0; k < s.interfaces.size(); ++k) {
+    Eigen::MatrixXd full(6 * s.mesh.nodeCount(), m.eigenvalues.size());
+    for (long j = 0; j < m.eigenvalues.size(); ++j) full.col(j) = s.map.expand(m.vectors.col(j));
+    t.push_back(staticTruncation(s.compliance[k], referencePointShapes(s.interfaces[k], s.mesh, full), m.eigenvalues,
+                                 s.compliance_scale));
+  }
+  return t;
+}
+
+// The modes asked (modes: N, keep: [...], or static_error: e, which doubles the
+// count until every interface's static response is met).
+void solveEigenmodes(BuildState& s, Progress& peig, const std::string& factorisation) {
+  const BodySpec& spec = s.spec;
   // More modes than the held body has degrees of freedom that carry mass
   // cannot be had (a massless DOF, a shell's drilling rotation, is an infinite
   // eigenvalue): refuse them here rather than let the eigen-solver search for
   // what does not exist.
-  const long massless = masslessDofs(sys.M);
-  const long flexible = map.constrainedDofs() + map.multipliers - massless - rigid.cols();
+  const long massless = masslessDofs(s.sys.M);
+  const long flexible = s.map.constrainedDofs() + s.map.multipliers - massless - s.rigid.cols();
   // keep: [...] solves up to the highest mode number asked.
   const long solved = spec.keep_modes.empty() ? spec.modes : spec.keep_modes.back();
   if (solved > flexible)
@@ -665,18 +733,18 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   ModalRequest req;
   req.modes = spec.static_error > 0 ? 8 : solved;
   req.max_frequency_hz = spec.max_frequency_hz;
-  req.tolerance = options.tolerance;
-  req.multipliers = map.multipliers;
-  ModalResult modal;
+  req.tolerance = s.options.tolerance;
+  req.multipliers = s.map.multipliers;
+  ModalResult& modal = s.modal;
   for (;;) {
     bool solver_limit = false;  // static_error: a doubled count the eigen-solver could not deliver
     try {
-      modal = solveModes(comm, sys.K, sys.M, rigid, req, [&](long c, long w) {
+      modal = solveModes(s.comm, s.sys.K, s.sys.M, s.rigid, req, [&](long c, long w) {
         peig.update(static_cast<double>(c) / static_cast<double>(std::max<long>(w, 1)), std::to_string(c) + "/" + std::to_string(w) + " modes" + (factorisation.empty() ? "" : "; " + factorisation));
       });
     } catch (const ModeCountError& e) {
       if (spec.static_error <= 0 || modal.eigenvalues.size() == 0) spec.modes_node.fail(e.what());
-      if (rank == 0)
+      if (s.rank == 0)
         std::fprintf(stderr, "fe-prep: warning: modes: {static_error}: %s; keeping the %ld modes found before\n", e.what(),
                      static_cast<long>(modal.eigenvalues.size()));
       solver_limit = true;  // `modal` still holds the previous, smaller set
@@ -684,14 +752,14 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     if (spec.static_error <= 0) break;
     // modes: {static_error: e}: the fewest leading modes that miss at most e at
     // every interface in every loaded direction; double the count until met.
-    const std::vector<StaticTruncation> t = truncations(modal);
+    const std::vector<StaticTruncation> t = truncations(s, modal);
     double worst = 0.0;
     const long n = modesForStaticError(t, spec.static_error, &worst);
     // At most 512 modes: a load the modes cannot carry statically (an in-plane
     // force on a panel, whose membrane modes lie far up) is reported, not chased.
     const long available = std::min<long>(flexible, 512);
     if (worst <= spec.static_error || req.modes >= available || solver_limit) {
-      if (worst > spec.static_error && rank == 0)
+      if (worst > spec.static_error && s.rank == 0)
         std::fprintf(stderr, "fe-prep: warning: modes: {static_error: %g} not reached with %ld modes (%.3g missed); "
                      "the summary and /interfaces/*/static_error say where\n", spec.static_error, n, worst);
       modal.eigenvalues.conservativeResize(n);
@@ -700,11 +768,17 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     }
     req.modes = std::min<long>(2 * req.modes, available);
   }
-  // The eigenmodes the basis keeps: all that were solved, or those asked by
-  // number (keep: [...]); recorded in /reduction/ (docs/body-file.md).
+}
+
+// The eigenmodes the basis keeps: all that were solved, or those asked by
+// number (keep: [...]); recorded in /reduction/ (docs/body-file.md).
+void keepModes(BuildState& s) {
+  const BodySpec& spec = s.spec;
+  ModalResult& modal = s.modal;
   std::vector<long> kept(static_cast<std::size_t>(modal.eigenvalues.size()));
   for (std::size_t j = 0; j < kept.size(); ++j) kept[j] = static_cast<long>(j) + 1;
   if (!spec.keep_modes.empty()) {
+    const long solved = spec.keep_modes.back();
     if (modal.eigenvalues.size() < solved)
       spec.modes_node.fail("mode " + std::to_string(solved) + " asked but the eigen-solver found " +
                            std::to_string(modal.eigenvalues.size()));
@@ -718,211 +792,270 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
     modal.eigenvalues.conservativeResize(static_cast<long>(kept.size()));
     modal.vectors.conservativeResize(Eigen::NoChange, static_cast<long>(kept.size()));
   }
-  body.kept_modes = kept;
-  body.kept_eigenvalues = modal.eigenvalues;
-  peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(rigid.cols()) +
-              " rigid removed)");
-  res.stages.push_back({"eigensolve", sw.seconds(), sw.cpu(), peakRssMb(), modal.factorisation.used_max_rank_mib});
-  res.rigid_eigenvalues = modal.rigid_eigenvalues;
-  res.rigid_share_removed_min = modal.rigid_projection_min;
-  res.rigid_share_kept_max = modal.rigid_projection_max;
+  s.res.body.kept_modes = kept;
+  s.res.body.kept_eigenvalues = modal.eigenvalues;
+}
 
-  // --- the body
-  if (spec.craig_bampton) {
-    // Boundary DOF: every reference condition's rows; lifts that give each a
-    // unit value (rigid patches carry their master's lift to the slaves).
-    const long n = mesh.nodeCount();
-    std::map<long, Eigen::MatrixXd> node_rows;
-    for (const auto& c : conditions) {
-      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(c.clamp ? 6 : 3, 6);
-      C.leftCols(3).topRows(3).setIdentity();
-      C.topRightCorner(3, 3) = -skew(c.point - mesh.nodes.row(c.node).transpose());
-      if (c.clamp) C.bottomRightCorner(3, 3).setIdentity();
-      auto it = node_rows.find(c.node);
-      if (it == node_rows.end()) {
-        node_rows.emplace(c.node, C);
-      } else {
-        Eigen::MatrixXd S(it->second.rows() + C.rows(), 6);
-        S << it->second, C;
-        it->second = S;
-      }
+void eigenStage(BuildState& s) {
+  s.sw.start();
+  Progress peig("eigen-solve", 1.0, s.quiet);
+  // MUMPS's estimate of the factorisation of K (static responses, eigen-solve),
+  // before the first one starts; refused when over what is left.
+  const std::string factorisation = checkFactorisationMemory(s.sys.K, "the stiffness");
+  if (!factorisation.empty()) peig.update(0.0, factorisation);
+  staticResponses(s);
+  solveEigenmodes(s, peig, factorisation);
+  keepModes(s);
+  const ModalResult& modal = s.modal;
+  peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(s.rigid.cols()) +
+              " rigid removed)");
+  s.res.stages.push_back({"eigensolve", s.sw.seconds(), s.sw.cpu(), peakRssMb(), modal.factorisation.used_max_rank_mib});
+  s.res.rigid_eigenvalues = modal.rigid_eigenvalues;
+  s.res.rigid_share_removed_min = modal.rigid_projection_min;
+  s.res.rigid_share_kept_max = modal.rigid_projection_max;
+}
+
+// ---- 5. the basis: Craig-Bampton, static correction, or the modes alone
+
+// Boundary DOF: every reference condition's rows; lifts that give each a
+// unit value (rigid patches carry their master's lift to the slaves).
+std::vector<Lift> boundaryLifts(const BuildState& s) {
+  const Mesh& mesh = s.mesh;
+  std::map<long, Eigen::MatrixXd> node_rows;
+  for (const auto& c : s.conditions) {
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(c.clamp ? 6 : 3, 6);
+    C.leftCols(3).topRows(3).setIdentity();
+    C.topRightCorner(3, 3) = -skew(c.point - mesh.nodes.row(c.node).transpose());
+    if (c.clamp) C.bottomRightCorner(3, 3).setIdentity();
+    auto it = node_rows.find(c.node);
+    if (it == node_rows.end()) {
+      node_rows.emplace(c.node, C);
+    } else {
+      Eigen::MatrixXd S(it->second.rows() + C.rows(), 6);
+      S << it->second, C;
+      it->second = S;
     }
-    std::vector<Lift> lifts;
-    for (const auto& [node, C] : node_rows) {
-      const std::size_t first = lifts.size();
-      appendLifts({node}, C, lifts);
-      for (const auto& rc : couplings) {
-        if (rc.master != node) continue;
-        for (std::size_t j = first; j < lifts.size(); ++j)
-          for (long sl : rc.slaves)
-            lifts[j][sl] = rigidTransfer((mesh.nodes.row(sl) - mesh.nodes.row(node)).transpose()) * lifts[j][node];
-      }
+  }
+  std::vector<Lift> lifts;
+  for (const auto& [node, C] : node_rows) {
+    const std::size_t first = lifts.size();
+    appendLifts({node}, C, lifts);
+    for (const auto& rc : s.couplings) {
+      if (rc.master != node) continue;
+      for (std::size_t j = first; j < lifts.size(); ++j)
+        for (long sl : rc.slaves)
+          lifts[j][sl] = rigidTransfer((mesh.nodes.row(sl) - mesh.nodes.row(node)).transpose()) * lifts[j][node];
     }
-    for (const auto& pc : patch_conditions) appendLifts(pc.nodes, pc.C, lifts);
-    ConstraintModeInput cb;
-    cb.n_nodes = n;
+  }
+  for (const auto& pc : s.patch_conditions) appendLifts(pc.nodes, pc.C, lifts);
+  return lifts;
+}
+
+// K l_j from the element kernel of the assembly, over the elements that touch
+// the lifts (every rank, the mesh is whole); point masses carry no stiffness.
+NodeRows liftStiffness(const BuildState& s, const NodeRows& lifts, long n_boundary) {
+  const Mesh& amesh = s.assemblyMesh();
+  const long n_tri = s.n_tri, n_beam = s.n_beam;
+  NodeRows K_lifts;
+  std::vector<char> support(static_cast<std::size_t>(s.mesh.nodeCount()), 0);
+  for (const auto& [node, rows] : lifts) support[static_cast<std::size_t>(node)] = rows.cwiseAbs().maxCoeff() > 0.0;
+  ElementResult er;
+  for (long e = 0; e < s.n_el; ++e) {
+    if (e >= n_tri + n_beam) break;  // point masses: no stiffness
+    const bool touches = e < n_tri ? std::any_of(amesh.triangles[static_cast<std::size_t>(e)].begin(), amesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
+                                   : std::any_of(amesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), amesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
+    if (!touches) continue;
+    s.kernel(e, er);
+    const long a = static_cast<long>(er.nodes.size());
+    Eigen::MatrixXd Le = Eigen::MatrixXd::Zero(6 * a, n_boundary);
+    for (long i = 0; i < a; ++i) {
+      const auto it = lifts.find(er.nodes[static_cast<std::size_t>(i)]);
+      if (it != lifts.end()) Le.middleRows(6 * i, 6) = it->second;
+    }
+    const Eigen::MatrixXd KLe = er.K * Le;
+    for (long i = 0; i < a; ++i) {
+      auto it = K_lifts.find(er.nodes[static_cast<std::size_t>(i)]);
+      if (it == K_lifts.end())
+        it = K_lifts.emplace(er.nodes[static_cast<std::size_t>(i)], Eigen::MatrixXd::Zero(6, n_boundary)).first;
+      it->second += KLe.middleRows(6 * i, 6);
+    }
+  }
+  return K_lifts;
+}
+
+void craigBamptonStage(BuildState& s) {
+  BuildResult& res = s.res;
+  FlexBody& body = res.body;
+  ConstraintModeInput cb;
+  {
+    std::vector<Lift> lifts = boundaryLifts(s);
+    cb.n_nodes = s.mesh.nodeCount();
     cb.n_boundary = static_cast<long>(lifts.size());
     cb.lifts = liftRows(lifts);
-    lifts.clear();
-    // K l_j from the elements that touch the lifts (every rank, the mesh is whole).
-    std::vector<char> support(static_cast<std::size_t>(n), 0);
-    for (const auto& [node, rows] : cb.lifts) support[static_cast<std::size_t>(node)] = rows.cwiseAbs().maxCoeff() > 0.0;
-    ElementResult er;
-    for (long e = 0; e < n_el; ++e) {
-      if (e >= n_tri + n_beam) break;  // point masses: no stiffness
-      const bool touches = e < n_tri ? std::any_of(amesh.triangles[static_cast<std::size_t>(e)].begin(), amesh.triangles[static_cast<std::size_t>(e)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; })
-                                     : std::any_of(amesh.beams[static_cast<std::size_t>(e - n_tri)].begin(), amesh.beams[static_cast<std::size_t>(e - n_tri)].end(), [&](long k) { return support[static_cast<std::size_t>(k)] != 0; });
-      if (!touches) continue;
-      kernel(e, er);
-      const long a = static_cast<long>(er.nodes.size());
-      Eigen::MatrixXd Le = Eigen::MatrixXd::Zero(6 * a, cb.n_boundary);
-      for (long i = 0; i < a; ++i) {
-        const auto it = cb.lifts.find(er.nodes[static_cast<std::size_t>(i)]);
-        if (it != cb.lifts.end()) Le.middleRows(6 * i, 6) = it->second;
-      }
-      const Eigen::MatrixXd KLe = er.K * Le;
-      for (long i = 0; i < a; ++i) {
-        auto it = cb.K_lifts.find(er.nodes[static_cast<std::size_t>(i)]);
-        if (it == cb.K_lifts.end())
-          it = cb.K_lifts.emplace(er.nodes[static_cast<std::size_t>(i)], Eigen::MatrixXd::Zero(6, cb.n_boundary)).first;
-        it->second += KLe.middleRows(6 * i, 6);
-      }
-    }
-    cb.K_fixed = sys.K;
-    cb.fixed = &map;
-    cb.normal = &modal.vectors;
-    Stopwatch swr;
-    swr.start();
-    CraigBamptonBasis basis = constraintModes(comm, cb);
-    res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
-    swr.start();
-    res.constraint_modes = cb.n_boundary;
-    // The free body (its couplings only) for the reduced K and M, assembled
-    // after the constraint modes' factorisation is freed: the two never coexist.
-    DofMap free_map = buildDofMap(mesh, {}, couplings, {});
-    if (imported) holdSolidRotations(free_map, imported->solid);
-    AssembledSystem free_sys;
-    assemble(comm, amesh, free_map, n_el, kernel, free_sys, {}, nodal_mass);
-    if (mass_moved.size()) addNodalTranslationalMass(comm, mesh, free_map, mass_moved, free_sys.M);
-    CraigBamptonResult cbr =
-        craigBampton(comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(mesh, {}));
-    res.stages.push_back({"reduction", swr.seconds(), swr.cpu(), peakRssMb(), 0.0});
-    body.eigenvalues = cbr.eigenvalues;
-    body.shapes = std::move(cbr.shapes);
-    body.fixed_interface_coordinates = cbr.fixed_interface_coordinates;
-    res.normal_modes = modal.eigenvalues.size();
-    res.rigid_removed = cbr.rigid_eigenvalues.size();
-    res.rigid_eigenvalues = cbr.rigid_eigenvalues;
-    res.rigid_share_removed_min = cbr.rigid_share_removed_min;
-    res.rigid_share_kept_max = cbr.rigid_share_kept_max;
-    body.reduction = "craig_bampton: " + std::to_string(res.constraint_modes) + " constraint modes + " +
-                     std::to_string(res.normal_modes) + " fixed-interface modes" + keptText(spec.keep_modes) + " - " +
-                     std::to_string(res.rigid_removed) + " rigid" +
-                     (cbr.massless_condensed ? " - " + std::to_string(cbr.massless_condensed) + " massless" : "") +
-                     " = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
-  } else if (spec.static_correction) {
-    // Residual-flexibility correction (residual_flexibility.h): the static
-    // responses to unit loads at the chosen interfaces, less what the modes
-    // hold, join the modes; the whole is re-diagonalised.
-    std::vector<long> cols;
-    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
-      const auto& only = spec.static_correction_interfaces;
-      if (!only.empty() && std::find(only.begin(), only.end(), mesh_interfaces[k].name) == only.end()) continue;
-      // Directions the reference holds (a clamped point, a pinned point's
-      // translations) have no static response: nothing to add.
-      for (long d = 0; d < 6; ++d)
-        if (compliance[k](d) > 1e-9 * compliance_scale(d / 3)) cols.push_back(6 * static_cast<long>(k) + d);
-    }
-    const long m = static_cast<long>(cols.size()), r = map.reduced, nm = modal.eigenvalues.size();
-    Eigen::MatrixXd A(r, m), MA(r, m), KR(r, m), MR(r, m);
-    Eigen::VectorXd KA_diag(m);
-    for (long j = 0; j < m; ++j) {
-      A.col(j) = map.restrict(u.col(cols[static_cast<std::size_t>(j)]));
-      MA.col(j) = multiply(sys.M, A.col(j));
-      KA_diag(j) = A.col(j).dot(reduceForce(map, loads.col(cols[static_cast<std::size_t>(j)])));  // A^T K A = A^T F
-    }
-    const Eigen::MatrixXd R = residualVectors(modal.vectors, A, MA);
-    for (long j = 0; j < m; ++j) {
-      KR.col(j) = multiply(sys.K, R.col(j));
-      MR.col(j) = multiply(sys.M, R.col(j));
-    }
-    const AugmentedBasis ab = augmentBasis(modal.vectors, modal.eigenvalues, R, KR, MR, KA_diag);
-    Eigen::MatrixXd Bred(r, nm + m);
-    Bred << modal.vectors, R;
-    body.eigenvalues = ab.eigenvalues;
-    body.shapes.resize(6 * mesh.nodeCount(), ab.eigenvalues.size());
-    for (long j = 0; j < ab.eigenvalues.size(); ++j) {
-      Eigen::VectorXd x = map.expand(Bred * ab.coefficients.col(j));
-      Eigen::Index imax;
-      x.cwiseAbs().maxCoeff(&imax);
-      if (x(imax) < 0) x = -x;  // the modal solver's sign convention
-      body.shapes.col(j) = x;
-    }
-    res.attachment_modes = m - ab.in_span - ab.dependent - ab.massless;
-    body.reduction = std::string("free + static correction") + (inertia_relief ? " with inertia relief" : "") + ": " +
-                     std::to_string(nm) + " modes" + keptText(spec.keep_modes) + " + " + std::to_string(m) +
-                     " unit loads - " + std::to_string(ab.in_span + ab.dependent) + " in the span" +
-                     (ab.massless ? " - " + std::to_string(ab.massless) + " massless" : "") + " = " +
-                     std::to_string(ab.eigenvalues.size()) + " shapes";
-  } else {
-    body.eigenvalues = modal.eigenvalues;
-    body.shapes.resize(6 * mesh.nodeCount(), modal.eigenvalues.size());
-    for (long j = 0; j < modal.eigenvalues.size(); ++j) body.shapes.col(j) = map.expand(modal.vectors.col(j));
-    body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes" + keptText(spec.keep_modes);
   }
-  body.frequencies_hz = body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
-  if (spec.geometric_stiffness) {
-    // The stress of the inertial loads is the static response of the held body.
-    if (rigid.cols() > 0)
-      spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
-    // The geometric stiffness kernels take one section: bodies of one shell
-    // property with one reference axis, or of one beam section with one x2.
-    auto uniform = [](const std::vector<Eigen::Vector3d>& v) {
-      return std::all_of(v.begin(), v.end(), [&](const Eigen::Vector3d& a) { return a == v.front(); });
-    };
-    if (mesh.shell_properties.size() + mesh.beam_properties.size() != 1 || !uniform(mesh.triangle_axis) ||
-        !uniform(mesh.beam_x2) || !mesh.point_masses.empty())
-      spec.geometric_stiffness_node.fail("geometric stiffness is computed for bodies of one shell or one beam "
-                                         "property with one material axis and no point masses; this body has " +
-                                         std::to_string(mesh.shell_properties.size() + mesh.beam_properties.size()) +
-                                         " properties");
-    StressStiffnessModel model;
-    if (!mesh.beam_properties.empty()) model.Ks = &mesh.beam_properties.front().Ks;
-    if (!mesh.beam_x2.empty()) model.section_x2 = mesh.beam_x2.front();
-    if (!mesh.shell_properties.empty()) {
-      model.laminate = &mesh.shell_properties.front().laminate;
-      model.kind = mesh.shell_properties.front().kind;
-      if (!mesh.triangle_axis.empty()) model.material_x = mesh.triangle_axis.front();
-    }
-    body.geometric_stiffness = modalGeometricStiffness(comm, mesh, map, sys.K, sys.lumped, model, body.shapes);
-    // Loads applied at the interfaces (joint reactions, force elements); an
-    // interface the reference holds passes its loads straight to the support.
-    for (std::size_t k = 0; k < mesh_interfaces.size(); ++k) {
-      const bool held = std::any_of(spec.reference.begin(), spec.reference.end(),
-                                    [&](const auto& r) { return r.set == mesh_interfaces[k].name; });
-      if (!held)
-        // The unit-load responses of the static check are these cases' static
-        // solutions (the same loads, interfaceLoads): reused, not solved again.
-        body.interfaces[k].geometric_stiffness =
-            static_check ? responseGeometricStiffness(mesh, u.middleCols(6 * static_cast<long>(k), 6), model, body.shapes)
-                         : interfaceGeometricStiffness(comm, mesh, map, sys.K, interfaceLoads(mesh_interfaces[k], mesh),
+  cb.K_lifts = liftStiffness(s, cb.lifts, cb.n_boundary);
+  cb.K_fixed = s.sys.K;
+  cb.fixed = &s.map;
+  cb.normal = &s.modal.vectors;
+  Stopwatch swr;
+  swr.start();
+  CraigBamptonBasis basis = constraintModes(s.comm, cb);
+  res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
+  swr.start();
+  res.constraint_modes = cb.n_boundary;
+  // The free body (its couplings only) for the reduced K and M, assembled
+  // after the constraint modes' factorisation is freed: the two never coexist.
+  DofMap free_map = buildDofMap(s.mesh, {}, s.couplings, {});
+  if (s.imported) holdSolidRotations(free_map, s.imported->solid);
+  AssembledSystem free_sys;
+  assemble(s.comm, s.assemblyMesh(), free_map, s.n_el, s.kernel, free_sys, {}, s.nodalMass());
+  if (s.mass_moved.size()) addNodalTranslationalMass(s.comm, s.mesh, free_map, s.mass_moved, free_sys.M);
+  CraigBamptonResult cbr =
+      craigBampton(s.comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(s.mesh, {}));
+  res.stages.push_back({"reduction", swr.seconds(), swr.cpu(), peakRssMb(), 0.0});
+  body.eigenvalues = cbr.eigenvalues;
+  body.shapes = std::move(cbr.shapes);
+  body.fixed_interface_coordinates = cbr.fixed_interface_coordinates;
+  res.normal_modes = s.modal.eigenvalues.size();
+  res.rigid_removed = cbr.rigid_eigenvalues.size();
+  res.rigid_eigenvalues = cbr.rigid_eigenvalues;
+  res.rigid_share_removed_min = cbr.rigid_share_removed_min;
+  res.rigid_share_kept_max = cbr.rigid_share_kept_max;
+  body.reduction = "craig_bampton: " + std::to_string(res.constraint_modes) + " constraint modes + " +
+                   std::to_string(res.normal_modes) + " fixed-interface modes" + keptText(s.spec.keep_modes) + " - " +
+                   std::to_string(res.rigid_removed) + " rigid" +
+                   (cbr.massless_condensed ? " - " + std::to_string(cbr.massless_condensed) + " massless" : "") +
+                   " = " + std::to_string(cbr.eigenvalues.size()) + " shapes";
+}
+
+// Residual-flexibility correction (residual_flexibility.h): the static
+// responses to unit loads at the chosen interfaces, less what the modes
+// hold, join the modes; the whole is re-diagonalised.
+void staticCorrectionStage(BuildState& s) {
+  const BodySpec& spec = s.spec;
+  const DofMap& map = s.map;
+  const ModalResult& modal = s.modal;
+  FlexBody& body = s.res.body;
+  std::vector<long> cols;
+  for (std::size_t k = 0; k < s.interfaces.size(); ++k) {
+    const auto& only = spec.static_correction_interfaces;
+    if (!only.empty() && std::find(only.begin(), only.end(), s.interfaces[k].name) == only.end()) continue;
+    // Directions the reference holds (a clamped point, a pinned point's
+    // translations) have no static response: nothing to add.
+    for (long d = 0; d < 6; ++d)
+      if (s.compliance[k](d) > 1e-9 * s.compliance_scale(d / 3)) cols.push_back(6 * static_cast<long>(k) + d);
+  }
+  const long m = static_cast<long>(cols.size()), r = map.reduced, nm = modal.eigenvalues.size();
+  Eigen::MatrixXd A(r, m), MA(r, m), KR(r, m), MR(r, m);
+  Eigen::VectorXd KA_diag(m);
+  for (long j = 0; j < m; ++j) {
+    A.col(j) = map.restrict(s.u.col(cols[static_cast<std::size_t>(j)]));
+    MA.col(j) = multiply(s.sys.M, A.col(j));
+    KA_diag(j) = A.col(j).dot(reduceForce(map, s.loads.col(cols[static_cast<std::size_t>(j)])));  // A^T K A = A^T F
+  }
+  const Eigen::MatrixXd R = residualVectors(modal.vectors, A, MA);
+  for (long j = 0; j < m; ++j) {
+    KR.col(j) = multiply(s.sys.K, R.col(j));
+    MR.col(j) = multiply(s.sys.M, R.col(j));
+  }
+  const AugmentedBasis ab = augmentBasis(modal.vectors, modal.eigenvalues, R, KR, MR, KA_diag);
+  Eigen::MatrixXd Bred(r, nm + m);
+  Bred << modal.vectors, R;
+  body.eigenvalues = ab.eigenvalues;
+  body.shapes.resize(6 * s.mesh.nodeCount(), ab.eigenvalues.size());
+  for (long j = 0; j < ab.eigenvalues.size(); ++j) {
+    Eigen::VectorXd x = map.expand(Bred * ab.coefficients.col(j));
+    Eigen::Index imax;
+    x.cwiseAbs().maxCoeff(&imax);
+    if (x(imax) < 0) x = -x;  // the modal solver's sign convention
+    body.shapes.col(j) = x;
+  }
+  s.res.attachment_modes = m - ab.in_span - ab.dependent - ab.massless;
+  body.reduction = std::string("free + static correction") + (s.inertia_relief ? " with inertia relief" : "") + ": " +
+                   std::to_string(nm) + " modes" + keptText(spec.keep_modes) + " + " + std::to_string(m) +
+                   " unit loads - " + std::to_string(ab.in_span + ab.dependent) + " in the span" +
+                   (ab.massless ? " - " + std::to_string(ab.massless) + " massless" : "") + " = " +
+                   std::to_string(ab.eigenvalues.size()) + " shapes";
+}
+
+void modesAloneStage(BuildState& s) {
+  FlexBody& body = s.res.body;
+  const ModalResult& modal = s.modal;
+  body.eigenvalues = modal.eigenvalues;
+  body.shapes.resize(6 * s.mesh.nodeCount(), modal.eigenvalues.size());
+  for (long j = 0; j < modal.eigenvalues.size(); ++j) body.shapes.col(j) = s.map.expand(modal.vectors.col(j));
+  body.reduction = "free: " + std::to_string(modal.eigenvalues.size()) + " shapes" + keptText(s.spec.keep_modes);
+}
+
+// ---- 6. geometric stiffness
+
+void geometricStiffnessStage(BuildState& s) {
+  const BodySpec& spec = s.spec;
+  const Mesh& mesh = s.mesh;
+  FlexBody& body = s.res.body;
+  // The stress of the inertial loads is the static response of the held body.
+  if (s.rigid.cols() > 0)
+    spec.geometric_stiffness_node.fail("geometric stiffness needs a reference that holds every rigid motion of the body (clamp an interface or end)");
+  // The geometric stiffness kernels take one section: bodies of one shell
+  // property with one reference axis, or of one beam section with one x2.
+  auto uniform = [](const std::vector<Eigen::Vector3d>& v) {
+    return std::all_of(v.begin(), v.end(), [&](const Eigen::Vector3d& a) { return a == v.front(); });
+  };
+  if (mesh.shell_properties.size() + mesh.beam_properties.size() != 1 || !uniform(mesh.triangle_axis) ||
+      !uniform(mesh.beam_x2) || !mesh.point_masses.empty())
+    spec.geometric_stiffness_node.fail("geometric stiffness is computed for bodies of one shell or one beam "
+                                       "property with one material axis and no point masses; this body has " +
+                                       std::to_string(mesh.shell_properties.size() + mesh.beam_properties.size()) +
+                                       " properties");
+  StressStiffnessModel model;
+  if (!mesh.beam_properties.empty()) model.Ks = &mesh.beam_properties.front().Ks;
+  if (!mesh.beam_x2.empty()) model.section_x2 = mesh.beam_x2.front();
+  if (!mesh.shell_properties.empty()) {
+    model.laminate = &mesh.shell_properties.front().laminate;
+    model.kind = mesh.shell_properties.front().kind;
+    if (!mesh.triangle_axis.empty()) model.material_x = mesh.triangle_axis.front();
+  }
+  body.geometric_stiffness = modalGeometricStiffness(s.comm, mesh, s.map, s.sys.K, s.sys.lumped, model, body.shapes);
+  // Loads applied at the interfaces (joint reactions, force elements); an
+  // interface the reference holds passes its loads straight to the support.
+  for (std::size_t k = 0; k < s.interfaces.size(); ++k) {
+    const bool held = std::any_of(spec.reference.begin(), spec.reference.end(),
+                                  [&](const auto& r) { return r.set == s.interfaces[k].name; });
+    if (!held)
+      // The unit-load responses of the static check are these cases' static
+      // solutions (the same loads, interfaceLoads): reused, not solved again.
+      body.interfaces[k].geometric_stiffness =
+          s.static_check ? responseGeometricStiffness(mesh, s.u.middleCols(6 * static_cast<long>(k), 6), model, body.shapes)
+                         : interfaceGeometricStiffness(s.comm, mesh, s.map, s.sys.K, interfaceLoads(s.interfaces[k], mesh),
                                                        model, body.shapes);
-    }
   }
+}
+
+// ---- 7. the interfaces' shapes and how much of their static response the basis holds
+
+void interfaceStage(BuildState& s) {
+  FlexBody& body = s.res.body;
   for (std::size_t k = 0; k < body.interfaces.size(); ++k) {
-    body.interfaces[k].shapes = referencePointShapes(mesh_interfaces[k], mesh, body.shapes);
-    if (static_check) {
+    body.interfaces[k].shapes = referencePointShapes(s.interfaces[k], s.mesh, body.shapes);
+    if (s.static_check) {
       const StaticTruncation t =
-          staticTruncation(compliance[k], body.interfaces[k].shapes, body.eigenvalues, compliance_scale);
+          staticTruncation(s.compliance[k], body.interfaces[k].shapes, body.eigenvalues, s.compliance_scale);
       body.interfaces[k].static_compliance = t.compliance;
       body.interfaces[k].static_participation = t.participation;
       body.interfaces[k].static_error = t.error;
     }
   }
+}
+
+// ---- 8. elements, nodal masses, stress recovery, inertia
+
+void finishStage(BuildState& s) {
+  const Mesh& mesh = s.mesh;
+  FlexBody& body = s.res.body;
   IndexMatrix conn;
-  if (n_tri > 0) {
-    conn.resize(n_tri, 3);
-    for (long e = 0; e < n_tri; ++e)
+  if (s.n_tri > 0) {
+    conn.resize(s.n_tri, 3);
+    for (long e = 0; e < s.n_tri; ++e)
       for (int k = 0; k < 3; ++k) conn(e, k) = mesh.triangles[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)];
     body.elements["triangles"] = conn;
   }
@@ -935,16 +1068,16 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
   body.nodal_mass.resize(mesh.nodeCount(), 4);
   for (long i = 0; i < mesh.nodeCount(); ++i) {
     // The three translational lumped entries are equal by construction; their mean is the nodal mass.
-    body.nodal_mass(i, 0) = sys.lumped.segment<3>(6 * i).mean();
-    body.nodal_mass.block<1, 3>(i, 1) = sys.lumped.segment<3>(6 * i + 3).transpose();
+    body.nodal_mass(i, 0) = s.sys.lumped.segment<3>(6 * i).mean();
+    body.nodal_mass.block<1, 3>(i, 1) = s.sys.lumped.segment<3>(6 * i + 3).transpose();
   }
   std::string stress_note;
-  if (!imported) body.stress = stressRecoveryData(mesh, spec, body.shapes, stress_note);
-  if (!stress_note.empty() && rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
-  const RigidProperties rp = imported ? importedRigidProperties(*imported) : meshProperties(mesh, false);
-  if (spec.general) {
-    res.regions = regionSummary(spec, mesh);
-    body.regions = regionRecords(mesh, res.regions);
+  if (!s.imported) body.stress = stressRecoveryData(mesh, s.spec, body.shapes, stress_note);
+  if (!stress_note.empty() && s.rank == 0) std::fprintf(stderr, "fe-prep: note: %s\n", stress_note.c_str());
+  const RigidProperties rp = s.imported ? importedRigidProperties(*s.imported) : meshProperties(mesh, false);
+  if (s.spec.general) {
+    s.res.regions = regionSummary(s.spec, mesh);
+    body.regions = regionRecords(mesh, s.res.regions);
   }
   // /inertia/ is the simulated body: what the invariants of the nodal masses imply.
   // The exact continuum values go beside it when they differ (row-sum lumping,
@@ -960,7 +1093,34 @@ BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOption
       (body.center_of_mass - body.exact_center_of_mass).norm() > 1e-12 * size ||
       (body.inertia_tensor - body.exact_inertia_tensor).cwiseAbs().maxCoeff() >
           1e-12 * body.exact_inertia_tensor.cwiseAbs().maxCoeff();
-  return res;
+}
+
+}  // namespace
+
+// The build as its stages over one BuildState; each stage's work is in its function above.
+BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options) {
+  BuildState s(comm, spec, options);
+  // 1. The mesh: generated from the spec, read from a mesh file or deck, or imported with its matrices.
+  meshStage(s);
+  // 2. Interfaces (their nodes and patches) and reference conditions: the DOF map T, the rigid motions left.
+  referenceStage(s);
+  // 3. K and M assembled over the element kernel; the nodal masses of /mass/nodal.
+  assemblyStage(s);
+  // 4. The interfaces' static responses, the eigen-solve (static_error's doubling) and keep:.
+  eigenStage(s);
+  // 5. The basis: Craig-Bampton's constraint and fixed-interface modes, the modes with a static
+  //    correction, or the modes alone.
+  if (spec.craig_bampton) craigBamptonStage(s);
+  else if (spec.static_correction) staticCorrectionStage(s);
+  else modesAloneStage(s);
+  s.res.body.frequencies_hz = s.res.body.eigenvalues.cwiseMax(0.0).cwiseSqrt() / (2 * M_PI);
+  // 6. The geometric stiffness of the inertial and interface loads.
+  if (spec.geometric_stiffness) geometricStiffnessStage(s);
+  // 7. The interfaces' shapes and their static truncation.
+  interfaceStage(s);
+  // 8. Elements, nodal masses, stress recovery data, inertia.
+  finishStage(s);
+  return std::move(s.res);
 }
 
 }  // namespace fc::feprep

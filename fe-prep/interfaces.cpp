@@ -104,8 +104,7 @@ MeshInterface resolveInterface(const Mesh& mesh, const InterfaceSpec& s, const E
       if (e == mesh.sets.end() || e->second.empty()) {
         std::vector<std::string> known;
         for (const auto& kv : mesh.sets) known.push_back(kv.first);
-        const std::string near = closestMatch(s.edge, known);
-        s.nodes_node.fail("the mesh has no node set '" + s.edge + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+        s.nodes_node.fail("the mesh has no node set '" + s.edge + "'" + didYouMean(s.edge, known));
       }
       it.nodes = e->second;
       break;

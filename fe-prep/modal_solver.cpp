@@ -42,6 +42,132 @@ struct Pair {
   double rigid_share;
 };
 
+// The rigid basis's M-products and the inverse of its Gram matrix, for the share
+// of each mode in the rigid space: share(x) = b^T G^{-1} b with b = R^T M x,
+// G = R^T M R, x M-normalised.
+struct RigidSpace {
+  std::vector<OwnedVec> MR;
+  Eigen::MatrixXd Ginv;
+};
+
+RigidSpace rigidSpace(Mat M, const Eigen::MatrixXd& rigid) {
+  const long r = rigid.cols();
+  RigidSpace rs{std::vector<OwnedVec>(static_cast<std::size_t>(r)), Eigen::MatrixXd()};
+  std::vector<OwnedVec>& MR = rs.MR;
+  Eigen::MatrixXd G(r, r);
+  {
+    std::vector<OwnedVec> R(static_cast<std::size_t>(r));
+    for (long j = 0; j < r; ++j) {
+      R[static_cast<std::size_t>(j)] = toPetsc(M, rigid.col(j));
+      check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
+      check(MatMult(M, R[static_cast<std::size_t>(j)], MR[static_cast<std::size_t>(j)]), "MatMult");
+    }
+    for (long i = 0; i < r; ++i)
+      for (long j = 0; j < r; ++j) {
+        PetscScalar d;
+        check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &d), "VecDot");
+        G(i, j) = d;
+      }
+  }
+  rs.Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
+  return rs;
+}
+
+// Krylov-Schur on K x = lambda M x, shift-invert about sigma through MUMPS; the
+// preconditioner (its factorisation) is returned for the memory report.
+PC setUpEigenSolver(EPS eps, Mat K, Mat M, long nev, long massive, double tolerance, double shift) {
+  check(EPSSetOperators(eps, K, M), "EPSSetOperators");
+  check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+  check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
+  // SLEPc's default basis size max(2 nev, nev + 15), but with its residual
+  // vector no larger than the DOF that carry mass: a Krylov vector beyond
+  // them has an M-norm of round-off, which SLEPc reports as "indefinite
+  // matrix".
+  const PetscInt ncv = static_cast<PetscInt>(std::max<long>(nev, std::min<long>(std::max<long>(2 * nev, nev + 15), nev + (massive - nev) / 2)));
+  check(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT), "EPSSetDimensions");
+  check(EPSSetTolerances(eps, tolerance, 1000), "EPSSetTolerances");
+  check(EPSSetTarget(eps, shift), "EPSSetTarget");
+  check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
+  ST st;
+  KSP ksp;
+  PC pc;
+  check(EPSGetST(eps, &st), "EPSGetST");
+  check(STSetType(st, STSINVERT), "STSetType");
+  check(STGetKSP(st, &ksp), "STGetKSP");
+  check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  // K - sigma M is symmetric positive definite for sigma < 0 (or sigma = 0 and
+  // a constrained K): Cholesky halves MUMPS's work and memory against LU.
+  check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  return pc;
+}
+
+// EPSSolve; a failure is reported once, as a sentence, not as PETSc's trace.
+void solveOrExplain(OwnedEps& eps, PC pc, long nev, long r, long elastic_available) {
+  check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
+  const PetscErrorCode ierr = EPSSolve(eps);
+  PetscPopErrorHandler();
+  if (ierr) {
+    // Out of memory in MUMPS or PETSc is said as such, not as a mode count.
+    throwIfOutOfMemory(pc, ierr, "K - sigma M");
+    // A failed solve can leave SLEPc's work matrices checked out: release
+    // the solver now, quietly, so that its clean-up does not print a trace.
+    check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
+    EPSDestroy(&eps.h);
+    PetscPopErrorHandler();
+    eps.h = nullptr;
+    const char* text = nullptr;
+    PetscErrorMessage(ierr, &text, nullptr);
+    throw ModeCountError("the eigen-solver failed for " + std::to_string(nev - r) + " modes (SLEPc: " +
+                         (text ? text : "error") + ", code " + std::to_string(ierr) +
+                         "); the body has " + std::to_string(elastic_available) +
+                         " elastic modes with mass, but the solver's basis lost its M-orthogonality among the "
+                         "highest of them (frequencies far above any a multibody run resolves): ask for fewer modes");
+  }
+}
+
+// The converged pairs, M-normalised, whole on every rank, each with its rigid share.
+std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, PetscInt nconv, long nev, PetscInt N, long r,
+                                 long multipliers) {
+  const std::vector<OwnedVec>& MR = rs.MR;
+  const Eigen::MatrixXd& Ginv = rs.Ginv;
+  std::vector<Pair> pairs;
+  OwnedVec xr, Mx, xall;
+  OwnedScatter scatter;
+  check(MatCreateVecs(K, &xr, &Mx), "MatCreateVecs");
+  check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
+  for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
+    PetscScalar kr;
+    check(EPSGetEigenpair(eps, i, &kr, nullptr, xr, nullptr), "EPSGetEigenpair");
+    check(MatMult(M, xr, Mx), "MatMult");
+    PetscScalar xmx;
+    check(VecDot(xr, Mx, &xmx), "VecDot");
+    check(VecScale(xr, 1.0 / std::sqrt(xmx)), "VecScale");
+    check(VecScale(Mx, 1.0 / std::sqrt(xmx)), "VecScale");
+    Eigen::VectorXd b(r);
+    for (long j = 0; j < r; ++j) {
+      PetscScalar d;
+      check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
+      b(j) = d;
+    }
+    const double share = r ? b.dot(Ginv * b) : 0.0;
+    check(VecScatterBegin(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* a;
+    check(VecGetArrayRead(xall, &a), "VecGetArrayRead");
+    Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(a, N);
+    check(VecRestoreArrayRead(xall, &a), "VecRestoreArrayRead");
+    // A sign convention makes files comparable between runs: largest entry positive.
+    Eigen::Index imax;
+    // (over the nodes' rows: the patches' multiplier rows come last)
+    x.head(N - multipliers).cwiseAbs().maxCoeff(&imax);
+    if (x(imax) < 0) x = -x;
+    pairs.push_back({kr, std::move(x), share});
+  }
+  return pairs;
+}
+
 }  // namespace
 
 long masslessDofs(Mat M) {
@@ -65,25 +191,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
   const long elastic_available = massive - r;
   if (elastic_available <= 0) throw ModeCountError("the model has no elastic degrees of freedom that carry mass");
 
-  // M-products of the rigid basis, for the share of each mode in the rigid space:
-  // share(x) = b^T G^{-1} b with b = R^T M x, G = R^T M R, x M-normalised.
-  std::vector<OwnedVec> MR(static_cast<std::size_t>(r));
-  Eigen::MatrixXd G(r, r);
-  {
-    std::vector<OwnedVec> R(static_cast<std::size_t>(r));
-    for (long j = 0; j < r; ++j) {
-      R[static_cast<std::size_t>(j)] = toPetsc(M, rigid.col(j));
-      check(MatCreateVecs(M, nullptr, &MR[static_cast<std::size_t>(j)]), "MatCreateVecs");
-      check(MatMult(M, R[static_cast<std::size_t>(j)], MR[static_cast<std::size_t>(j)]), "MatMult");
-    }
-    for (long i = 0; i < r; ++i)
-      for (long j = 0; j < r; ++j) {
-        PetscScalar d;
-        check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &d), "VecDot");
-        G(i, j) = d;
-      }
-  }
-  const Eigen::MatrixXd Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
+  const RigidSpace rs = rigidSpace(M, rigid);
 
   const double lambda_max =
       request.max_frequency_hz > 0 ? std::pow(2 * M_PI * request.max_frequency_hz, 2) : 0.0;
@@ -94,95 +202,18 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     const long nev = std::min<long>(wanted + r, massive);
     OwnedEps eps;
     check(EPSCreate(comm, &eps), "EPSCreate");
-    check(EPSSetOperators(eps, K, M), "EPSSetOperators");
-    check(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
-    check(EPSSetType(eps, EPSKRYLOVSCHUR), "EPSSetType");
-    // SLEPc's default basis size max(2 nev, nev + 15), but with its residual
-    // vector no larger than the DOF that carry mass: a Krylov vector beyond
-    // them has an M-norm of round-off, which SLEPc reports as "indefinite
-    // matrix".
-    const PetscInt ncv = static_cast<PetscInt>(std::max<long>(nev, std::min<long>(std::max<long>(2 * nev, nev + 15), nev + (massive - nev) / 2)));
-    check(EPSSetDimensions(eps, nev, ncv, PETSC_DEFAULT), "EPSSetDimensions");
-    check(EPSSetTolerances(eps, request.tolerance, 1000), "EPSSetTolerances");
-    const double sigma = r > 0 ? request.shift : 0.0;
-    check(EPSSetTarget(eps, sigma), "EPSSetTarget");
-    check(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
-    ST st;
-    KSP ksp;
-    PC pc;
-    check(EPSGetST(eps, &st), "EPSGetST");
-    check(STSetType(st, STSINVERT), "STSetType");
-    check(STGetKSP(st, &ksp), "STGetKSP");
-    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    // K - sigma M is symmetric positive definite for sigma < 0 (or sigma = 0 and
-    // a constrained K): Cholesky halves MUMPS's work and memory against LU.
-    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    const PC pc = setUpEigenSolver(eps, K, M, nev, massive, request.tolerance, r > 0 ? request.shift : 0.0);
     MonitorContext mctx{&progress, nev};
     check(EPSMonitorSet(eps, monitor, &mctx, nullptr), "EPSMonitorSet");
     check(EPSSetFromOptions(eps), "EPSSetFromOptions");
-    {
-      // A failure here is reported once, as a sentence, not as PETSc's trace.
-      check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
-      const PetscErrorCode ierr = EPSSolve(eps);
-      PetscPopErrorHandler();
-      if (ierr) {
-        // Out of memory in MUMPS or PETSc is said as such, not as a mode count.
-        throwIfOutOfMemory(pc, ierr, "K - sigma M");
-        // A failed solve can leave SLEPc's work matrices checked out: release
-        // the solver now, quietly, so that its clean-up does not print a trace.
-        check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
-        EPSDestroy(&eps.h);
-        PetscPopErrorHandler();
-        eps.h = nullptr;
-        const char* text = nullptr;
-        PetscErrorMessage(ierr, &text, nullptr);
-        throw ModeCountError("the eigen-solver failed for " + std::to_string(nev - r) + " modes (SLEPc: " +
-                             (text ? text : "error") + ", code " + std::to_string(ierr) +
-                             "); the body has " + std::to_string(elastic_available) +
-                             " elastic modes with mass, but the solver's basis lost its M-orthogonality among the "
-                             "highest of them (frequencies far above any a multibody run resolves): ask for fewer modes");
-      }
-    }
+    solveOrExplain(eps, pc, nev, r, elastic_available);
     PetscInt nconv, its;
     check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
     check(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
     result.iterations += its;
     result.factorisation = largerMumpsMemory(result.factorisation, mumpsMemory(pc));
 
-    std::vector<Pair> pairs;
-    OwnedVec xr, Mx, xall;
-    OwnedScatter scatter;
-    check(MatCreateVecs(K, &xr, &Mx), "MatCreateVecs");
-    check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
-    for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
-      PetscScalar kr;
-      check(EPSGetEigenpair(eps, i, &kr, nullptr, xr, nullptr), "EPSGetEigenpair");
-      check(MatMult(M, xr, Mx), "MatMult");
-      PetscScalar xmx;
-      check(VecDot(xr, Mx, &xmx), "VecDot");
-      check(VecScale(xr, 1.0 / std::sqrt(xmx)), "VecScale");
-      check(VecScale(Mx, 1.0 / std::sqrt(xmx)), "VecScale");
-      Eigen::VectorXd b(r);
-      for (long j = 0; j < r; ++j) {
-        PetscScalar d;
-        check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
-        b(j) = d;
-      }
-      const double share = r ? b.dot(Ginv * b) : 0.0;
-      check(VecScatterBegin(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-      check(VecScatterEnd(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-      const PetscScalar* a;
-      check(VecGetArrayRead(xall, &a), "VecGetArrayRead");
-      Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(a, N);
-      check(VecRestoreArrayRead(xall, &a), "VecRestoreArrayRead");
-      // A sign convention makes files comparable between runs: largest entry positive.
-      Eigen::Index imax;
-      x.head(N - request.multipliers).cwiseAbs().maxCoeff(&imax);
-      if (x(imax) < 0) x = -x;
-      pairs.push_back({kr, std::move(x), share});
-    }
+    std::vector<Pair> pairs = convergedPairs(eps, K, M, rs, nconv, nev, N, r, request.multipliers);
 
     if (static_cast<long>(pairs.size()) < nev)
       throw ModeCountError("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +

@@ -66,8 +66,8 @@ void addSeenWarnings(const std::string& path, const std::set<std::string>& seen,
     if (!seen.count(w)) out << w << "\n";
 }
 
-void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out,
-                  const std::set<std::string>& seen_warnings) {
+// The run: what was modelled, how the integrator did, the balance of energy and the peak reactions.
+void printRunFigures(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out) {
   const double t = r.t_reached;
   std::printf("mbs-run %s: %s -> %s\n", fc::version(), m.source.c_str(), out.c_str());
   std::printf("  status: %s (t = %.6g of %.6g s)\n", r.status.c_str(), t, m.settings.t_end);
@@ -101,6 +101,10 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
   printPeak("reaction force", r.peak_reaction_force, "N");
   printPeak("reaction torque", r.peak_reaction_torque, "N m");
   printPeak("modal coordinate", r.peak_modal_coordinate, "kg^1/2 m");
+}
+
+// Which modes the run excited: the highest kept modes' share, the fixed-interface modes by energy.
+void printModalEnergy(const fc::mbs::Model& m, const fc::mbs::RunSummary& r) {
   for (std::size_t k = 0; k < m.bodies.size() && k < r.peak_modal_energy.size(); ++k) {
     const Eigen::VectorXd& e = r.peak_modal_energy[k];
     if (e.size() == 0) continue;
@@ -128,6 +132,10 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
                 "can keep the most excited)\n",
                 m.bodies[k].name.c_str(), list.c_str(), rank.modes.size() > 12 ? ", ..." : "");
   }
+}
+
+// Stresses, warnings, events, distances and contacts.
+void printPeaks(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::set<std::string>& seen_warnings) {
   if (r.peak_failure_index.found)
     std::printf("  largest Tsai-Wu failure index %.4g (body %s, element %ld, ply %ld, 0-based; t = %.6g s)%s\n",
                 r.peak_failure_index.value, r.peak_failure_index.body.c_str(), r.peak_failure_index.element,
@@ -151,6 +159,9 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
                   m.forces[static_cast<std::size_t>(contacts[k])].name.c_str(), r.peak_contact_force[k].value,
                   r.peak_contact_force[k].time, r.peak_contact_penetration[k].value, r.peak_contact_penetration[k].time);
   }
+}
+
+void printMargins(const fc::mbs::Model& m, const fc::mbs::RunSummary& r) {
   // Margins (monitors/margins.h): the named beams against buckling, the named
   // joints' peak reactions, every latch's arrival.
   const fc::mbs::Margins& mg = r.margins;
@@ -193,6 +204,14 @@ void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const s
       std::printf("  largest overshoot past a stop or latch %.3g rad (joint %s, angle from %.6g to %.6g rad)\n", largest,
                   m.joints[worst].name.c_str(), mg.joints[worst].angle_min, mg.joints[worst].angle_max);
   }
+}
+
+void printSummary(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std::string& out,
+                  const std::set<std::string>& seen_warnings) {
+  printRunFigures(m, r, out);
+  printModalEnergy(m, r);
+  printPeaks(m, r, seen_warnings);
+  printMargins(m, r);
   if (r.samples > 0 && r.energy_dissipated != 0.0)
     std::printf("  energy dissipated %.6g J (damping, friction, impacts)\n", r.energy_dissipated);
   for (const std::string& e : r.integrator_log) std::printf("  integrator %s\n", e.c_str());

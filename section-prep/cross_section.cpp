@@ -288,6 +288,40 @@ struct FirstOrderProducts {
   Eigen::Matrix4d VLV = Eigen::Matrix4d::Zero();
 };
 
+// The four rigid warping modes Psi (three translations, the rotation about x1), node by node.
+DenseN4 rigidWarpingModes(const SectionMesh& mesh) {
+  const long nn = static_cast<long>(mesh.nodes.size());
+  DenseN4 Psi = DenseN4::Zero(3 * nn, 4);
+  for (long a = 0; a < nn; ++a) {
+    const double x2 = mesh.nodes[a].x(), x3 = mesh.nodes[a].y();
+    Psi(3 * a, 0) = 1;
+    Psi(3 * a + 1, 1) = 1;
+    Psi(3 * a + 2, 2) = 1;
+    Psi(3 * a + 1, 3) = -x3;
+    Psi(3 * a + 2, 3) = x2;
+  }
+  return Psi;
+}
+
+// Adds one element's E into the stored pattern and its Dhe, Dle rows.
+void scatterElement(const SparsePattern& pattern, const ElementNodes& en, const MatE& Ee, const Mat4& He,
+                    const Mat4& Le, Assembled& A) {
+  const int ne = en.count;
+  const auto slots = pattern.elementSlots(en.node.data(), ne);
+  double* pE = A.E.valuePtr();
+  for (int a = 0; a < ne; ++a)
+    for (int b = 0; b < ne; ++b) {
+      const long stride = pattern.blockStride(en.node[b]);
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) pE[slots(a, b) + i + stride * j] += Ee(3 * a + i, 3 * b + j);
+    }
+  for (int a = 0; a < ne; ++a) {
+    const long r0 = 3L * en.node[a];
+    A.Dhe.middleRows(r0, 3) += He.middleRows(3 * a, 3);
+    A.Dle.middleRows(r0, 3) += Le.middleRows(3 * a, 3);
+  }
+}
+
 // Without V0: assembles E, Dhe, Dle, Dee, the constraints and the inertia.
 // With V0: only fills `products`.
 Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
@@ -304,15 +338,7 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
   A.Dhe = DenseN4::Zero(ndof, 4);
   A.Dle = DenseN4::Zero(ndof, 4);
   A.HPsi = DenseN4::Zero(ndof, 4);
-  A.Psi = DenseN4::Zero(ndof, 4);
-  for (long a = 0; a < nn; ++a) {
-    const double x2 = mesh.nodes[a].x(), x3 = mesh.nodes[a].y();
-    A.Psi(3 * a, 0) = 1;
-    A.Psi(3 * a + 1, 1) = 1;
-    A.Psi(3 * a + 2, 2) = 1;
-    A.Psi(3 * a + 1, 3) = -x3;
-    A.Psi(3 * a + 2, 3) = x2;
-  }
+  A.Psi = rigidWarpingModes(mesh);
 
   const long n_el = static_cast<long>(mesh.elements.size());
   const long report_every = std::max<long>(1, n_el / 20);
@@ -396,19 +422,7 @@ Assembled assemble(const SectionMesh& mesh, const SparsePattern& pattern,
       products->VLV.noalias() += Ve.transpose() * Ll * Ve;
       continue;
     }
-    const auto slots = pattern.elementSlots(en.node.data(), ne);
-    double* pE = A.E.valuePtr();
-    for (int a = 0; a < ne; ++a)
-      for (int b = 0; b < ne; ++b) {
-        const long stride = pattern.blockStride(en.node[b]);
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) pE[slots(a, b) + i + stride * j] += Ee(3 * a + i, 3 * b + j);
-      }
-    for (int a = 0; a < ne; ++a) {
-      const long r0 = 3L * en.node[a];
-      A.Dhe.middleRows(r0, 3) += He.middleRows(3 * a, 3);
-      A.Dle.middleRows(r0, 3) += Le.middleRows(3 * a, 3);
-    }
+    scatterElement(pattern, en, Ee, He, Le, A);
   }
   A.second_mass(1, 0) = A.second_mass(0, 1);
   return A;

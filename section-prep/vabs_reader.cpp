@@ -153,6 +153,9 @@ Matrix6d orthotropicStiffness(double E1, double E2, double E3, double G12, doubl
   return fc::orthotropicCompliance(E1, E2, E3, G12, G13, G23, nu12, nu13, nu23).inverse();
 }
 
+// One function, read top to bottom as the file is: the records come in the
+// file's own order and each is checked where it is read (a sequential reader,
+// allowed its length in tests/docs/function_length.py).
 VabsModel parseVabs(const std::string& text, const std::string& name) {
   TokenStream ts(text, name);
   VabsModel model;

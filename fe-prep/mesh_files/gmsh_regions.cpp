@@ -62,11 +62,10 @@ Mesh readGmsh(const RegionMeshRequest& r) {
   auto known = [&](const std::string& what, const std::vector<std::string>& names) {
     for (const auto& n : names)
       if (!contains(all_names, n)) {
-        const std::string near = closestMatch(n, all_names);
         std::string list;
         for (const auto& a : all_names) list += (list.empty() ? "" : ", ") + a;
         throw std::invalid_argument(what + " '" + n + "' is no physical group of " + r.path +
-                                    (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                                    didYouMean(n, all_names) +
                                     "; the file's groups: " + (list.empty() ? "none" : list));
       }
   };

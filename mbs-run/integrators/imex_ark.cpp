@@ -16,7 +16,7 @@ using Eigen::VectorXd;
 // An additive pair: explicit ERK (aE) and ESDIRK (aI, first stage explicit,
 // constant diagonal gamma) sharing c and b; bh the embedded solution; `order`
 // that of b (the controller's exponent is -1/order, bh being one lower).
-// tests/mbs-run/test_integrator_correctness.cpp checks the orders (error
+// tests/mbs-run/integrators/test_integrator_correctness.cpp checks the orders (error
 // ratios at fixed steps on a problem with an exact solution).
 struct ArkTableau {
   int stages, order;

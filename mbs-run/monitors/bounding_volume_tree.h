@@ -27,7 +27,7 @@
 // exceeds the final minimum by more than a margin (1e-12 of the bodies'
 // extent) covering the rounding of the box arithmetic, so the minimum is the
 // same kernel evaluation on the same arguments as the brute force's: equal
-// bit for bit (tests/mbs-run/test_distance.cpp). A pair at distance 0 (a
+// bit for bit (tests/mbs-run/monitors/test_distance.cpp). A pair at distance 0 (a
 // segment through a triangle) ends the search: no distance is smaller.
 #include <Eigen/Dense>
 

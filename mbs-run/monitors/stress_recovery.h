@@ -31,7 +31,7 @@ namespace fc::mbs {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Strength5 = Eigen::Matrix<double, 5, 1>;  // Xt Xc Yt Yc S12 [Pa]
 
-// ---- kernels (plain functions; each tested alone, tests/mbs-run/test_stress_recovery.cpp)
+// ---- kernels (plain functions; each tested alone, tests/mbs-run/monitors/test_stress_recovery.cpp)
 
 // In-plane strain [eps_x, eps_y, gamma_xy] at height z of generalised strains
 // e = [eps0; kappa]: eps0 + z kappa (Kirchhoff kinematics; Reddy eq. 3.3.9).

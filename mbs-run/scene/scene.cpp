@@ -636,8 +636,7 @@ int jointRef(const Model& m, const InputNode& n) {
   if (k < 0) {
     std::vector<std::string> names;
     for (const Joint& j : m.joints) names.push_back(j.name);
-    const std::string hint = closestMatch(name, names);
-    n.fail("unknown joint '" + name + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+    n.fail("unknown joint '" + name + "'" + didYouMean(name, names));
   }
   return k;
 }

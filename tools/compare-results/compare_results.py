@@ -6,6 +6,7 @@ the results unchanged.
     compare_results.py run BUILD OUTDIR        # run the set with BUILD's tools into OUTDIR
     compare_results.py compare BASE NEW        # compare two OUTDIRs; exit 1 on any difference
     compare_results.py check BUILD BASE OUTDIR # run, then compare with BASE
+    compare_results.py run BUILD OUTDIR 'feprep_*' sar_rigid_v1   # only the cases named (patterns)
 
 BUILD is a CMake build tree holding section-prep/section-prep, fe-prep/fe-prep and
 mbs-run/mbs-run. Every case runs in a folder of its own under OUTDIR/cases with its
@@ -14,8 +15,9 @@ depends on OUTDIR. The set (CASES below) takes about two minutes of CPU: the tes
 scenes of tests/data/mbs-run and tests/data/sar (short --t-end where a scene is long),
 the teaching examples end to end (section-prep -> fe-prep -> mbs-run with CSV and
 animation), the SAR example's rigid scene and a short flexible SAR run on the paper's
-bodies, both formulations of the tree scenes, the three integrators, and scenes whose
-input is wrong (their error messages and did-you-mean hints are compared too).
+bodies, both formulations of the tree scenes, the three integrators, scenes whose input is wrong (their error messages and did-you-mean
+hints are compared too), and fe-prep's bodies of every kind of build (FEPREP_CASES,
+about 15 s of CPU). identical.sh runs the set with two builds and compares them.
 
 What is compared:
   * every HDF5 file: the tree of groups and datasets, each dataset's type, shape and
@@ -41,6 +43,7 @@ Not compared, because they legitimately change from run to run of one binary
 A `compare` of two runs of the same build is the check that this list is complete.
 """
 import filecmp
+import fnmatch
 import os
 import re
 import shutil
@@ -179,6 +182,95 @@ CASES = {
                     ("section-prep", ["bad-material.yaml", "-o", "g.h5", "-q"])]),
 }
 
+
+# fe-prep's bodies, one case per kind of build (buildFlexBody's paths): free-free and
+# held shells and beams, point, rigid and distributing interfaces, Craig-Bampton with
+# `keep:`, static correction (held and with inertia relief), `static_error`, geometric
+# stiffness, moment lumping, laminates, imported CalculiX matrices, Nastran decks and
+# gmsh mesh-file regions. Each runs in a few seconds; the YAMLs written inline follow
+# the tests' (tests/fe-prep).
+def _write(dst, text):
+    return ("write", (dst, text))
+
+
+_ISO = "materials:\n  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}\n"
+_STEEL = "materials:\n  steel: {type: isotropic, E: 210.0e9, nu: 0.3, rho: 7850}\n"
+_HALF = (_STEEL + "body:\n  name: half\n  beam: {length: 1.0, elements: 10, section: {shape: solid_circle, "
+         "diameter: 0.02, material: steel}}\n  interfaces: {a: [-0.5, 0, 0], b: [0.5, 0, 0]}\n")
+_PANEL = _ISO + "body:\n  name: panel\n  shell: {rectangle: {length: 1.0, width: 0.65}, material: cfrp_iso, thickness: 0.002, mesh: {size: 0.05}}\n"
+_IMPORT = "tests/data/import/"
+_FEPREP = "tests/data/fe-prep/"
+
+
+def _feprep(yaml, out):
+    return ("fe-prep", [yaml, "-o", out, "-q"])
+
+
+FEPREP_CASES = {
+    "feprep_data_bodies": ({_FEPREP + "spinning_rod.yaml": "rod.yaml", _FEPREP + "spinning_strip.yaml": "strip.yaml",
+                            _FEPREP + "steel_bar_pendulum.yaml": "bar.yaml"},
+                           [_feprep("rod.yaml", "rod.h5"), _feprep("strip.yaml", "strip.h5"),
+                            _feprep("bar.yaml", "bar.h5")]),
+    "feprep_craig_bampton": ({}, [
+        _write("half.yaml", _HALF + "  reference: {clamp: [a, b]}\n  reduction: craig_bampton\n  modes: 2\n"),
+        _feprep("half.yaml", "half.h5"),
+        _write("keep.yaml", _HALF + "  reference: {clamp: [a, b]}\n  reduction: craig_bampton\n  modes: {keep: [1, 3, 5]}\n"),
+        _feprep("keep.yaml", "keep.h5"),
+        _write("free.yaml", _HALF + "  reference: free\n  modes: {keep: [2, 4]}\n  mass: consistent\n"),
+        _feprep("free.yaml", "free.h5"),
+        _write("pins.yaml", _PANEL + "  interfaces:\n"
+               "    P0: {point: [-0.4, -0.25, 0.0], coupling: distributing, nodes: {within: 0.08}}\n"
+               "    P1: {point: [-0.4, 0.25, 0.0], coupling: distributing, nodes: {within: 0.08}}\n"
+               "    R: {point: [0.5, 0.0, 0.05], coupling: rigid, nodes: {within: 0.08}}\n"
+               "    T: [0.5, 0.3, 0.0]\n"
+               "  reference: {pin: [P0, P1], clamp: [R, T]}\n  reduction: craig_bampton\n  modes: 6\n  mass: lumped\n"),
+        _feprep("pins.yaml", "pins.h5")]),
+    "feprep_static_correction": ({}, [
+        _write("relief.yaml", _PANEL + "  interfaces:\n"
+               "    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}\n"
+               "    T: {point: [0.5, 0.0, 0.07], coupling: distributing, nodes: {within: 0.1}}\n"
+               "  reference: free\n  modes: {count: 4, static_correction: [T]}\n"),
+        _feprep("relief.yaml", "relief.h5"),
+        _write("held.yaml", _PANEL + "  interfaces:\n"
+               "    H1: {point: [-0.5, -0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}\n"
+               "    H2: {point: [-0.5, 0.2, 0.07], coupling: distributing, nodes: {within: 0.1}}\n"
+               "    T: {point: [0.5, 0.0, 0.07], coupling: rigid, nodes: {within: 0.1}}\n"
+               "  reference: {clamp: [H1, H2]}\n  modes: {count: 4, static_correction: true}\n  mass: lumped_moments\n"),
+        _feprep("held.yaml", "held.h5"),
+        _write("error.yaml", _STEEL + "body:\n  name: cantilever\n  beam: {length: 2.0, elements: 40, section: "
+               "{shape: solid_circle, diameter: 0.02, material: steel}}\n  interfaces: {root: [-1.0, 0, 0], tip: [1.0, 0, 0]}\n"
+               "  reference: {clamp: [root]}\n  modes: {static_error: 0.004}\n"),
+        _feprep("error.yaml", "error.h5")]),
+    "feprep_sar_panels": ({SAR + "/bodies": "bodies"},
+                          [_feprep("bodies/panel2_iso.yaml", "panel2_iso.h5"),
+                           _feprep("bodies/panel3_layup2.yaml", "panel3_layup2.h5")]),
+    "feprep_imported": ({_IMPORT + f: f for f in ["fitting_matrices.sti", "fitting_matrices.mas", "fitting_matrices.dof",
+                                                  "fitting_mesh.inp", "bar_matrices.sti", "bar_matrices.mas",
+                                                  "bar_matrices.dof", "bar_mesh.inp"]}, [
+        _write("fitting.yaml", "body:\n  name: fitting\n  matrices: {format: calculix, stiffness: fitting_matrices.sti, "
+               "mass: fitting_matrices.mas, dofs: fitting_matrices.dof, model: fitting_mesh.inp}\n  units: mm-t-s\n"
+               "  interfaces:\n    pin: {point: [0.0, 0.0, 0.030], coupling: rigid, nodes: {edge: LUGTOP}}\n"
+               "  reference: free\n  modes: 4\n"),
+        _feprep("fitting.yaml", "fitting.h5"),
+        _write("bar.yaml", "body:\n  name: bar\n  matrices: {format: calculix, stiffness: bar_matrices.sti, mass: "
+               "bar_matrices.mas, dofs: bar_matrices.dof, model: bar_mesh.inp}\n  units: mm-t-s\n  modes: 6\n"),
+        _feprep("bar.yaml", "bar.h5")]),
+    "feprep_mesh_files": ({"examples/stiffened-panel/panel.yaml": "panel.yaml",
+                           "examples/stiffened-panel/panel.geo": "panel.geo",
+                           "examples/stiffened-panel/panel.bdf": "panel.bdf",
+                           "examples/stiffened-panel/panel_deck.yaml": "panel_deck.yaml",
+                           _FEPREP + "nastran/panel_small.bdf": "panel_small.bdf",
+                           _FEPREP + "nastran/panel_grids_small.inc": "panel_grids_small.inc",
+                           _FEPREP + "nastran/panel_free.bdf": "panel_free.bdf"},
+                          [_feprep("panel.yaml", "panel.h5"), _feprep("panel_deck.yaml", "panel_deck.h5"),
+                           _write("small.yaml", "body:\n  name: small\n  mesh: {file: panel_small.bdf}\n  units: m-kg-s\n  interfaces:\n"
+                                  "    hinge: {rbe: 9100}\n    fitting: {grid: 153}\n  reference: {clamp: [hinge]}\n  modes: 6\n"),
+                           _feprep("small.yaml", "small.h5"),
+                           _write("free.yaml", "body:\n  name: free\n  mesh: {file: panel_free.bdf}\n  units: m-kg-s\n  modes: 6\n"),
+                           _feprep("free.yaml", "free.h5")]),
+}
+CASES.update(FEPREP_CASES)
+
 TOOLS = {"section-prep": "section-prep/section-prep", "fe-prep": "fe-prep/fe-prep", "mbs-run": "mbs-run/mbs-run"}
 
 
@@ -188,7 +280,7 @@ def run(build, outdir, only=None):
                OMPI_MCA_rmaps_base_oversubscribe="1")
     total_cpu = 0.0
     for name, (inputs, steps) in CASES.items():
-        if only and name not in only:
+        if only and not any(fnmatch.fnmatch(name, o) for o in only):
             continue
         case = os.path.join(outdir, "cases", name)
         if os.path.exists(case):
@@ -208,6 +300,11 @@ def run(build, outdir, only=None):
                 body = "\n".join(l for l in body.splitlines() if not l.startswith("simulation:")) + "\n"
                 with open(os.path.join(case, dst), "w") as f:
                     f.write(body + text)
+                continue
+            if tool == "write":
+                dst, text = args
+                with open(os.path.join(case, dst), "w") as f:
+                    f.write(text)
                 continue
             if tool == "sed":
                 expr, src, dst = args

@@ -1,7 +1,7 @@
 """Effective restitution of the Hunt-Crossley contact law with Lankarani and
 Nikravesh's hysteresis factor alpha = 3 (1 - e^2) / (4 v0): the 1-DOF impact
 m d'' = -max(0, k d^n (1 + alpha d')) from d = 0, d' = v0, integrated with scipy's
-DOP853 (rtol 1e-12) to the separation. The reference of tests/mbs-run/test_contact.cpp
+DOP853 (rtol 1e-12) to the separation. The reference of tests/mbs-run/mechanics/test_contact.cpp
 (HuntCrossleyRestitution), independent of mbs-run. Run: python3 ln_restitution.py
 Printed (n, e, e_eff, e_eff - e, contact duration [s]) for m = 2 kg, k = 1e5, v0 = 1 m/s:
 1.0 0.95 0.9535060451277123 0.003506045127712354 0.014052615222265988
