@@ -406,6 +406,29 @@ std::string modeViewName(int mode_index) {
   return name;
 }
 
+namespace {
+
+// /regions/NAME: each region's members, mass, axes and what it is (docs/body-file.md, Regions).
+void writeRegions(H5File& f, const std::vector<FlexRegion>& regions) {
+  for (const FlexRegion& r : regions) {
+    std::string key = r.name;  // a group name may hold a '/', a link name may not
+    std::replace(key.begin(), key.end(), '/', '_');
+    const std::string g = "/regions/" + (key.empty() ? std::string("_") : key);
+    f.writeIntVector(g + "/members", r.members);
+    if (r.kind != "set") f.writeScalar(g + "/mass", r.mass);
+    if (r.axes.rows() > 0) f.writeMatrix(g + "/axes", r.axes);
+    f.setAttribute(g, "name", r.name);
+    f.setAttribute(g, "kind", r.kind);
+    f.setAttribute(g, "members_of", r.members_of);
+    if (!r.property.empty()) f.setAttribute(g, "property", r.property);
+    if (!r.element.empty()) f.setAttribute(g, "element", r.element);
+    if (!r.axis.empty()) f.setAttribute(g, "axis", r.axis);
+    if (!r.summary.empty()) f.setAttribute(g, "summary", r.summary);
+  }
+}
+
+}  // namespace
+
 void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaInvariants& inv,
                    const Provenance& prov) {
   try {
@@ -429,21 +452,7 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
   f.writeMatrix("/mesh/nodes", body.nodes);
   for (const auto& [type, conn] : body.elements) f.writeIntMatrix("/mesh/" + type, conn);
   f.writeMatrix("/mass/nodal", body.nodal_mass);
-  for (const FlexRegion& r : body.regions) {
-    std::string key = r.name;  // a group name may hold a '/', a link name may not
-    std::replace(key.begin(), key.end(), '/', '_');
-    const std::string g = "/regions/" + (key.empty() ? std::string("_") : key);
-    f.writeIntVector(g + "/members", r.members);
-    if (r.kind != "set") f.writeScalar(g + "/mass", r.mass);
-    if (r.axes.rows() > 0) f.writeMatrix(g + "/axes", r.axes);
-    f.setAttribute(g, "name", r.name);
-    f.setAttribute(g, "kind", r.kind);
-    f.setAttribute(g, "members_of", r.members_of);
-    if (!r.property.empty()) f.setAttribute(g, "property", r.property);
-    if (!r.element.empty()) f.setAttribute(g, "element", r.element);
-    if (!r.axis.empty()) f.setAttribute(g, "axis", r.axis);
-    if (!r.summary.empty()) f.setAttribute(g, "summary", r.summary);
-  }
+  writeRegions(f, body.regions);
 
   writeArray(f, "/modes/eigenvalues", {um}, body.eigenvalues.data());
   writeArray(f, "/modes/frequencies_hz", {um}, body.frequencies_hz.data());
