@@ -62,20 +62,22 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
   const long row0 = n0 < n ? map.offset[static_cast<std::size_t>(n0)] : map.reduced;
   const long row1 = n1 < n ? map.offset[static_cast<std::size_t>(n1)] : map.reduced;
   const long local = row1 - row0;
-  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(local), 0), o_nnz(static_cast<std::size_t>(local), 0);
-  for (long i = n0; i < n1; ++i) {
-    auto& a = adj[static_cast<std::size_t>(i)];
+  // Node i's rows from its neighbours a (i included, sorted, unique): the
+  // entries in this rank's diagonal block and off it; a is released.
+  auto countRows = [&](long i, std::vector<long>& a, std::vector<PetscInt>& d_rows, std::vector<PetscInt>& o_rows) {
     a.push_back(i);
     std::sort(a.begin(), a.end());
     a.erase(std::unique(a.begin(), a.end()), a.end());
     PetscInt d = 0, o = 0;
     for (long j : a) (j >= n0 && j < n1 ? d : o) += map.count(j);
     for (int k = 0; k < map.count(i); ++k) {
-      d_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
-      o_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
+      d_rows[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
+      o_rows[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
     }
     std::vector<long>().swap(a);
-  }
+  };
+  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(local), 0), o_nnz(static_cast<std::size_t>(local), 0);
+  for (long i = n0; i < n1; ++i) countRows(i, adj[static_cast<std::size_t>(i)], d_nnz, o_nnz);
 
   // The node-local mass pattern: node i's mass reaches the nodes it is
   // expressed through (sources[i]), all of them with each other. Every node i
@@ -91,19 +93,7 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
     }
     dm_nnz.assign(static_cast<std::size_t>(local), 0);
     om_nnz.assign(static_cast<std::size_t>(local), 0);
-    for (long i = n0; i < n1; ++i) {
-      auto& a = adj_m[static_cast<std::size_t>(i - n0)];
-      a.push_back(i);
-      std::sort(a.begin(), a.end());
-      a.erase(std::unique(a.begin(), a.end()), a.end());
-      PetscInt d = 0, o = 0;
-      for (long j : a) (j >= n0 && j < n1 ? d : o) += map.count(j);
-      for (int k = 0; k < map.count(i); ++k) {
-        dm_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = d;
-        om_nnz[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] - row0 + k)] = o;
-      }
-      std::vector<long>().swap(a);
-    }
+    for (long i = n0; i < n1; ++i) countRows(i, adj_m[static_cast<std::size_t>(i - n0)], dm_nnz, om_nnz);
   }
 
   // Held patches' multipliers (reference_conditions.h): the rows alpha C T on
