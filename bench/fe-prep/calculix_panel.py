@@ -1,15 +1,41 @@
 #!/usr/bin/env python3
-"""Writes a CalculiX input (*FREQUENCY, S8R shells) for the benchmark panel:
-2.0 x 1.3 m, 2 mm, E = 159 GPa, nu = 0.38, rho = 1610, free-free, centred on
-the origin, structured nx x ny eight-node quadrilaterals. Asks for 26 modes
-(6 rigid + 20 elastic). Usage: calculix_panel.py NX NY OUT.inp"""
+"""Writes a CalculiX 2.20 input for the benchmark panel: 2.0 x 1.3 m, 2 mm,
+E = 159 GPa, nu = 0.38, rho = 1610, centred on the origin, structured nx x ny
+eight-node quadrilaterals (S8R; ccx expands each into a C3D20R brick).
+
+  calculix_panel.py NX NY OUT.inp
+      free-free *FREQUENCY, 26 modes (6 rigid + 20 elastic).
+  calculix_panel.py NX NY OUT.inp --craig-bampton R
+      the Craig-Bampton equivalent of fe-prep's panel with 8 pinned
+      `distributing` interfaces (points (+-0.9 / +-0.3, +-0.55, 0), the
+      mid-surface nodes within R of each): step 1, *FREQUENCY with the 8 points'
+      translations fixed, 8 fixed-interface modes; step 2, *SUBSTRUCTURE
+      GENERATE retaining those 24 translations (the static part: one
+      factorisation, one solve per retained DOF, i.e. the constraint modes'
+      work; ccx writes the condensed stiffness to OUT.mtx).
+
+The distributing coupling (RBE3) is written as *EQUATIONs on a free point
+node P: the point's motion is the weighted least-squares rigid fit of the
+patch translations, [u_P; theta_P] = A^-1 sum_i w_i G_i^T u_i with
+G_i = [I, -skew(X_i - P)], A = sum_i w_i G_i^T G_i (MSC Nastran QRG, RBE3;
+CalculiX's *DISTRIBUTING is the same fit), of which only the three
+translation rows are used (fe-prep pins translations). Weights: tributary
+areas (an S8R's area over its eight nodes, summed over the node's elements).
+Rows are put in reduced row echelon form so each dependent DOF (first term)
+is a patch translation used in no other equation; u_P stays independent, so
+it can be fixed (*BOUNDARY) or retained. Prints the node, element and DOF
+counts."""
 import sys
 
+import numpy as np
+
 nx, ny, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
+cb_radius = float(sys.argv[5]) if len(sys.argv) > 5 and sys.argv[4] == "--craig-bampton" else None
 L, W = 2.0, 1.3
+POINTS = [(x, y) for x in (-0.9, -0.3, 0.3, 0.9) for y in (-0.55, 0.55)]
 # Node grid (2 nx + 1) x (2 ny + 1) without the quads' centre points.
-ids = {}
-lines = ["*HEADING", "fe-prep benchmark panel, S8R, free-free", "*NODE"]
+ids, xy = {}, {}
+lines = ["*HEADING", "fe-prep benchmark panel, S8R", "*NODE"]
 n = 0
 for j in range(2 * ny + 1):
     for i in range(2 * nx + 1):
@@ -17,7 +43,10 @@ for j in range(2 * ny + 1):
             continue
         n += 1
         ids[(i, j)] = n
-        lines.append(f"{n}, {-L / 2 + L * i / (2 * nx):.12g}, {-W / 2 + W * j / (2 * ny):.12g}, 0.0")
+        xy[n] = (-L / 2 + L * i / (2 * nx), -W / 2 + W * j / (2 * ny))
+        lines.append(f"{n}, {xy[n][0]:.12g}, {xy[n][1]:.12g}, 0.0")
+weight = {}
+area = L * W / (nx * ny) / 8
 lines.append("*ELEMENT, TYPE=S8R, ELSET=PANEL")
 e = 0
 for j in range(ny):
@@ -26,9 +55,78 @@ for j in range(ny):
         I, J = 2 * i, 2 * j
         c = [ids[(I, J)], ids[(I + 2, J)], ids[(I + 2, J + 2)], ids[(I, J + 2)],
              ids[(I + 1, J)], ids[(I + 2, J + 1)], ids[(I + 1, J + 2)], ids[(I, J + 1)]]
+        for k in c:
+            weight[k] = weight.get(k, 0.0) + area
         lines.append(f"{e}, " + ", ".join(map(str, c)))
 lines += ["*MATERIAL, NAME=CFRP", "*ELASTIC", "159.0e9, 0.38", "*DENSITY", "1610.",
-          "*SHELL SECTION, ELSET=PANEL, MATERIAL=CFRP", "0.002",
-          "*STEP", "*FREQUENCY, SOLVER=SPOOLES", "26", "*END STEP"]
+          "*SHELL SECTION, ELSET=PANEL, MATERIAL=CFRP", "0.002"]
+
+
+def skew(d):
+    return np.array([[0, -d[2], d[1]], [d[2], 0, -d[0]], [-d[1], d[0], 0]])
+
+
+if cb_radius is None:
+    lines += ["*STEP", "*FREQUENCY, SOLVER=SPOOLES", "26", "*END STEP"]
+else:
+    point_nodes = []
+    eqs = ["*EQUATION"]
+    for p in POINTS:
+        n += 1
+        point_nodes.append(n)
+        lines.insert(lines.index("*ELEMENT, TYPE=S8R, ELSET=PANEL"), f"{n}, {p[0]:.12g}, {p[1]:.12g}, 0.0")
+        P = np.array([p[0], p[1], 0.0])
+        patch = [k for k, v in xy.items() if np.hypot(v[0] - p[0], v[1] - p[1]) <= cb_radius]
+        if len(patch) < 3:
+            sys.exit(f"calculix_panel.py: radius {cb_radius} holds {len(patch)} nodes at {p}: coarser than the patch")
+        A = np.zeros((6, 6))
+        Gt = []
+        for k in patch:
+            G = np.hstack([np.eye(3), -skew(np.array([xy[k][0], xy[k][1], 0.0]) - P)])
+            A += weight[k] * G.T @ G
+            Gt.append(weight[k] * G.T)
+        C = np.linalg.solve(A, np.hstack(Gt))[:3]          # u_P = C u_patch
+        # Reduced row echelon form of C: pivots are the dependent patch DOFs.
+        R = C.copy()
+        Pm = np.eye(3)                                     # R = Pm C, u_P coefficients -Pm
+        piv = []
+        row = 0
+        for col in range(R.shape[1]):
+            if row == 3:
+                break
+            r = row + int(np.argmax(np.abs(R[row:, col])))
+            if abs(R[r, col]) < 1e-9 * np.abs(C).max():
+                continue
+            R[[row, r]] = R[[r, row]]
+            Pm[[row, r]] = Pm[[r, row]]
+            s = R[row, col]
+            R[row] /= s
+            Pm[row] /= s
+            for q in range(3):
+                if q != row:
+                    f = R[q, col]
+                    R[q] -= f * R[row]
+                    Pm[q] -= f * Pm[row]
+            piv.append(col)
+            row += 1
+        for q in range(3):
+            terms = [(patch[piv[q] // 3], piv[q] % 3 + 1, 1.0)]
+            terms += [(patch[c // 3], c % 3 + 1, R[q, c]) for c in range(R.shape[1])
+                      if c not in piv and abs(R[q, c]) > 1e-14]
+            terms += [(point_nodes[-1], d + 1, -Pm[q, d]) for d in range(3) if abs(Pm[q, d]) > 1e-14]
+            eqs.append(str(len(terms)))
+            flat = [f"{t[0]}, {t[1]}, {t[2]:.15g}" for t in terms]
+            for k in range(0, len(flat), 4):                # at most 12 entries a line
+                eqs.append(", ".join(flat[k:k + 4]) + ("," if k + 4 < len(flat) else ""))
+    lines += eqs
+    lines += ["*NSET, NSET=POINTS"] + [", ".join(map(str, point_nodes))]
+    lines += ["*STEP", "*FREQUENCY, SOLVER=SPOOLES", "8",
+              "*BOUNDARY", "POINTS, 1, 3", "*END STEP",
+              "*STEP", "*SUBSTRUCTURE GENERATE, SOLVER=SPOOLES",
+              "*BOUNDARY, OP=NEW",
+              "*RETAINED NODAL DOFS, SORTED=NO", "POINTS, 1, 3",
+              "*SUBSTRUCTURE MATRIX OUTPUT, STIFFNESS=YES",
+              "*END STEP"]
 open(out, "w").write("\n".join(lines) + "\n")
-print(f"{n} nodes, {e} S8R elements, {6 * n} shell DOF")
+shell = 6 * (n - (8 if cb_radius is not None else 0))
+print(f"{n} nodes, {e} S8R elements, {shell} shell DOF")

@@ -1,54 +1,142 @@
 #!/usr/bin/env bash
-# fe-prep (serial and mpirun -n 2) against CalculiX (*FREQUENCY, S8R shells) on
-# the free-free benchmark panel: 2.0 x 1.3 m, 2 mm, E = 159 GPa, nu = 0.38,
-# rho = 1610, 20 elastic modes. Prints one markdown table row per size: DOF,
-# wall time and peak memory of each run, first and 20th elastic frequency.
-#   bench/fe-prep/compare.sh BUILD_DIR [DOF ...]      (default sizes 1e3 .. 5e5)
-# CalculiX runs up to CCX_MAX_DOF (default 70000): beyond, it needs far longer
-# than fe-prep (see docs/fe-prep.md). Needs calculix-ccx (apt-get install calculix-ccx).
+# fe-prep against CalculiX 2.20 (`ccx`, S8R shells, SPOOLES) on the benchmark
+# panel, free-free and Craig-Bampton, side by side at each size
+# (docs/benchmarks.md, fe-prep against CalculiX). The panel: 2.0 x 1.3 m, 2 mm,
+# E = 159 GPa, nu = 0.38, rho = 1610; fe-prep meshes it with DST triangles
+# (6 DOF a node), CalculiX with a structured S8R grid (`calculix_panel.py`).
+# Both models have the requested number of shell DOF (equal DOF, 6 a node):
+# the sizes are the user's model sizes, and both are converged to < 0.1 % in
+# f1 from 1e4 DOF up (the table shows it).
+#   free-free:     fe-prep `reference: free`, 20 elastic modes;
+#                  ccx *FREQUENCY, 26 modes (its 6 rigid ones + 20).
+#   Craig-Bampton: 8 `distributing` interfaces on the mid-surface nodes within
+#                  R of (+-0.9 / +-0.3, +-0.55), pinned (24 boundary DOF),
+#                  8 fixed-interface modes; fe-prep `reduction: craig_bampton`;
+#                  ccx: *FREQUENCY with the 8 points fixed (8 modes), then
+#                  *SUBSTRUCTURE GENERATE retaining their 24 translations
+#                  (the constraint modes' static solves on one factorisation).
+#                  R = 0.05 m (0.2 m at 1e3 DOF, whose elements are larger).
+# Each job runs alone in its own process under GNU time (CPU = user + system;
+# peak RSS); one thread each (OMP_NUM_THREADS=1). Jobs that may pass ~3 GB
+# (fe-prep from FEPREP_LOCK_DOF = 4e5 DOF, ~6.5 kB a DOF; CalculiX from
+# CCX_LOCK_DOF = 2e5, ~13 kB a DOF) run under `flock $BIGRUN_LOCK` (default
+# /work/tmp/bigrun.lock if that directory exists) so that big runs on a shared
+# machine queue. CalculiX runs up to CCX_MAX_DOF (default 4e5; at 1e6 it needs
+# ~13 GB); beyond, its row is an estimate from a power-law fit of its measured
+# sizes >= 1e4 DOF, marked "est.". The 1-minute load average is printed with
+# each row: on a loaded machine CPU seconds are the figure, not wall time.
+#   bench/fe-prep/compare.sh BUILD_DIR [DOF ...]   (default 1e3 1e4 1e5 3e5 1e6)
+#   REDUCTIONS="free craig_bampton" (default both), KEEP=DIR keeps the outputs
+#   (and the CalculiX rows the 1e6 estimate is fitted to, across calls).
 set -euo pipefail
 build=${1:?usage: compare.sh BUILD_DIR [DOF ...]}
 shift
 sizes=("$@")
-[ ${#sizes[@]} -eq 0 ] && sizes=(1000 4000 16000 64000 256000 500000)
+[ ${#sizes[@]} -eq 0 ] && sizes=(1000 10000 100000 300000 1000000)
 here=$(cd "$(dirname "$0")" && pwd)
+build=$(cd "$build" && pwd)
 feprep="$build/fe-prep/fe-prep"
-ccx_max=${CCX_MAX_DOF:-70000}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 FLEXCOMP_QUIET=1
+py=/usr/bin/python3
+ccx_max=${CCX_MAX_DOF:-400000}
+feprep_lock_dof=${FEPREP_LOCK_DOF:-400000}
+ccx_lock_dof=${CCX_LOCK_DOF:-200000}
+lock=${BIGRUN_LOCK:-}
+[ -z "$lock" ] && [ -d /work/tmp ] && lock=/work/tmp/bigrun.lock
+reductions=${REDUCTIONS:-free craig_bampton}
+if [ -n "${KEEP:-}" ]; then work=$KEEP; mkdir -p "$work"; else work=$(mktemp -d); trap 'rm -rf "$work"' EXIT; fi
+export OMP_NUM_THREADS=1 FLEXCOMP_QUIET=1
 
-# "wall_s cpu_s peak_MB" of a command (GNU time: CPU = user + system of the
-# command and its children, the MPI ranks included), its stdout to $2. On a
-# shared machine the CPU time is the comparable figure.
-timed() { local out=$1; shift; /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$@" > "$out" 2>/dev/null; awk '{printf "%.2f %.2f %.0f", $1, $2 + $3, $4/1024}' "$work/time"; }
+# "wall_s cpu_s peak_MB" of a command run in directory $1, stdout to $2.
+timed() {
+  local dir=$1 out=$2 big=$3; shift 3
+  local pre=()
+  [ "$big" = 1 ] && [ -n "$lock" ] && pre=(flock "$lock")
+  (cd "$dir" && "${pre[@]}" /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$@" > "$out" 2>&1)
+  awk '{printf "%.2f %.2f %.0f", $1, $2 + $3, $4 / 1024}' "$work/time"
+}
+load() { awk '{print $1}' /proc/loadavg; }
 
-echo "| target DOF | fe-prep DOF | serial wall s | serial CPU s | serial MB | -n 2 wall s | -n 2 CPU s (both ranks) | -n 2 MB (max rank) | f1 Hz | f20 Hz | CalculiX DOF | CalculiX wall s | CalculiX CPU s | CalculiX MB | CalculiX f1 | CalculiX f20 |"
+feprep_yaml() {  # dof reduction radius
+  local h
+  h=$(awk -v d="$1" 'BEGIN{n=d/3; printf "%.6g", sqrt(4*2.6/(sqrt(3)*n))}')  # DOF ~ 6 nodes ~ 3 triangles
+  echo "materials:"
+  echo "  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}"
+  echo "body:"
+  echo "  name: bench"
+  echo "  shell: {rectangle: {length: 2.0, width: 1.3}, material: cfrp_iso, thickness: 0.002, element: dst, mesh: {size: $h, max_triangles: 5000000}}"
+  if [ "$2" = free ]; then
+    echo "  reference: free"
+    echo "  modes: 20"
+  else
+    echo "  interfaces:"
+    local k=0 x y
+    for x in -0.9 -0.3 0.3 0.9; do for y in -0.55 0.55; do
+      echo "    P$k: {point: [$x, $y, 0.0], coupling: distributing, nodes: {within: $3}}"; k=$((k + 1))
+    done; done
+    echo "  reference: {pin: [P0, P1, P2, P3, P4, P5, P6, P7]}"
+    echo "  reduction: craig_bampton"
+    echo "  modes: 8"
+  fi
+}
+
+# Power-law fit y = a x^b over the measured CalculiX rows (x >= 1e4) of one
+# reduction, evaluated at $2: "cpu MB".
+estimate() {
+  awk -v red="$1" -v x="$2" '$1 == red && $2 >= 10000 && $3 > 0 {
+      n++; lx = log($2); sx += lx; sxx += lx * lx
+      sc += log($3); sxc += lx * log($3); sm += log($4); sxm += lx * log($4) }
+    END { if (n < 2) { print "- -"; exit }
+      d = n * sxx - sx * sx; bc = (n * sxc - sx * sc) / d; bm = (n * sxm - sx * sm) / d
+      ac = (sc - bc * sx) / n; am = (sm - bm * sx) / n
+      printf "%.0f %.0f %.2f %.2f", exp(ac + bc * log(x)), exp(am + bm * log(x)), bc, bm }' "$work/ccx_fit"
+}
+# With KEEP, the measured CalculiX rows accumulate over invocations (sizes run
+# one call at a time still feed the fit).
+touch "$work/ccx_fit"
+
+echo "| target DOF | reduction | fe-prep DOF | fe-prep CPU s | fe-prep wall s | fe-prep MB | fe-prep stages CPU s (mesh / assembly / eigen / constraints / reduction) | CalculiX DOF | CalculiX CPU s | CalculiX wall s | CalculiX MB | CPU ratio | memory ratio | fe-prep f1, f_last Hz | CalculiX f1, f_last Hz | load |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for dof in "${sizes[@]}"; do
-  # DOF ~ 6 nodes ~ 3 triangles; h from the equilateral-triangle area.
-  h=$(awk -v d="$dof" 'BEGIN{n=d/3; printf "%.6g", sqrt(4*2.6/(sqrt(3)*n))}')
-  cat > "$work/panel.yaml" <<YAML
-materials:
-  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}
-body:
-  name: bench
-  shell: {rectangle: {length: 2.0, width: 1.3}, material: cfrp_iso, thickness: 0.002, element: dst, mesh: {size: $h}}
-  reference: free
-  modes: 20
-YAML
-  read -r s_wall s_cpu s_mem <<< "$(timed "$work/s.txt" "$feprep" -q "$work/panel.yaml" -o "$work/s.h5")"
-  read -r p_wall p_cpu p_mem <<< "$(timed "$work/p.txt" mpirun -n 2 --oversubscribe "$feprep" -q "$work/panel.yaml" -o "$work/p.h5")"
-  fdof=$(grep -o '[0-9]* DOF' "$work/s.txt" | head -1 | cut -d' ' -f1)
-  f1=$(awk '$1=="1"{print $2}' "$work/s.txt"); f20=$(awk '$1=="20"{print $2}' "$work/s.txt")
-  c_cols="- | - | - | - | - | -"
-  if [ "$dof" -le "$ccx_max" ]; then
-    # S8R: nodes = (2nx+1)(2ny+1) - nx ny ~ 3 nx ny, 6 DOF each; nx/ny = 2/1.3.
-    read -r nx ny <<< "$(awk -v d="$dof" 'BEGIN{q=d/18; nx=int(sqrt(q*2/1.3)+0.5); ny=int(q/nx+0.5); print nx, ny}')"
-    cdof=$(python3 "$here/calculix_panel.py" "$nx" "$ny" "$work/c.inp" | awk '{print $(NF-2)}')
-    read -r c_wall c_cpu c_mem <<< "$(cd "$work" && OMP_NUM_THREADS=2 timed "$work/c.txt" ccx -i c)"
-    cf=$(awk '/E I G E N V A L U E/{on=1} on && $1 ~ /^[0-9]+$/ && NF==5 {print $4}' "$work/c.dat" | sed -n '7p;26p' | awk '{printf "%.4f ", $1}')
-    c_cols="$cdof | $c_wall | $c_cpu | $c_mem | $(echo "$cf" | awk '{print $1" | "$2}')"
-  fi
-  echo "| $dof | $fdof | $s_wall | $s_cpu | $s_mem | $p_wall | $p_cpu | $p_mem | $f1 | $f20 | $c_cols |"
+  big_fe=0; [ "$dof" -ge "$feprep_lock_dof" ] && big_fe=1
+  big_ccx=0; [ "$dof" -ge "$ccx_lock_dof" ] && big_ccx=1
+  radius=0.05; [ "$dof" -lt 5000 ] && radius=0.2
+  # S8R: nodes = (2nx+1)(2ny+1) - nx ny ~ 3 nx ny, 6 DOF each; nx/ny = 2/1.3.
+  read -r nx ny <<< "$(awk -v d="$dof" 'BEGIN{q=d/18; nx=int(sqrt(q*2/1.3)+0.5); ny=int(q/nx+0.5); print nx, ny}')"
+  for red in $reductions; do
+    d="$work/$dof-$red"; mkdir -p "$d"
+    feprep_yaml "$dof" "$red" "$radius" > "$d/panel.yaml"
+    l0=$(load)
+    read -r f_wall f_cpu f_mem <<< "$(timed "$d" "$d/fe.txt" "$big_fe" "$feprep" -q panel.yaml -o panel.h5)"
+    fdof=$(grep -o '[0-9]* DOF,' "$d/fe.txt" | head -1 | cut -d' ' -f1)
+    stages=$(awk '$2 ~ /^[0-9.]+$/ && $3 == "s" && /CPU/ { c[$1] = $5 }
+      END { printf "%s / %s / %s / %s / %s", c["meshing"], c["assembly"], c["eigensolve"], (c["constraints"] == "" ? "-" : c["constraints"]), (c["reduction"] == "" ? "-" : c["reduction"]) }' "$d/fe.txt")
+    if [ "$red" = free ]; then
+      ff=$(awk '$1 == "1" { a = $2 } $1 == "20" { b = $2 } END { printf "%.4f, %.3f", a, b }' "$d/fe.txt")
+    else
+      ff=$($py -c "import h5py, numpy as np; l = np.sqrt(h5py.File('$d/panel.h5')['reduction/kept_eigenvalues'][:]) / (2 * np.pi); print(f'{l[0]:.4f}, {l[-1]:.3f}')")
+    fi
+    rm -f "$d/panel.h5" "$d/panel.xdmf"
+    if [ "$dof" -le "$ccx_max" ]; then
+      if [ "$red" = free ]; then
+        cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" | awk '{print $(NF-2)}')
+      else
+        cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" --craig-bampton "$radius" | awk '{print $(NF-2)}')
+      fi
+      read -r c_wall c_cpu c_mem <<< "$(timed "$d" "$d/c.txt" "$big_ccx" ccx -i c)"
+      # Eigenvalue table of the .dat: the first step's modes (free: skip the 6 rigid ones).
+      cf=$(awk -v red="$red" '/E I G E N V A L U E   O U T P U T/ { on++ } /P A R T I C/ { on = (on == 1 ? -1 : on) }
+        on == 1 && $1 ~ /^[0-9]+$/ && NF == 5 { f[$1] = $4 }
+        END { if (red == "free") printf "%.4f, %.3f", f[7], f[26]; else printf "%.4f, %.3f", f[1], f[8] }' "$d/c.dat")
+      echo "$red $cdof $c_cpu $c_mem" >> "$work/ccx_fit"
+      rm -f "$d/c.frd" "$d/c.12d"
+      ratio=$(awk -v a="$f_cpu" -v b="$c_cpu" -v m="$f_mem" -v n="$c_mem" 'BEGIN{printf "%.3f | %.3f", a / b, m / n}')
+      ccols="$cdof | $c_cpu | $c_wall | $c_mem | $ratio | $ff | $cf"
+    else
+      cdof=$(awk -v nx="$nx" -v ny="$ny" 'BEGIN{print 6 * ((2*nx+1)*(2*ny+1) - nx*ny)}')
+      read -r e_cpu e_mem bc bm <<< "$(estimate "$red" "$cdof")"
+      ratio=$(awk -v a="$f_cpu" -v b="$e_cpu" -v m="$f_mem" -v n="$e_mem" 'BEGIN{ if (b == "-") print "- | -"; else printf "%.3f (est.) | %.3f (est.)", a / b, m / n}')
+      ccols="$cdof | $e_cpu (est., DOF^$bc) | - | $e_mem (est., DOF^$bm) | $ratio | $ff | not run"
+    fi
+    echo "| $dof | $red | $fdof | $f_cpu | $f_wall | $f_mem | $stages | $ccols | $l0 |"
+  done
 done
