@@ -735,6 +735,7 @@ void solveEigenmodes(BuildState& s, Progress& peig, const std::string& factorisa
   req.max_frequency_hz = spec.max_frequency_hz;
   req.tolerance = s.options.tolerance;
   req.multipliers = s.map.multipliers;
+  req.keep_factor = spec.craig_bampton;
   ModalResult& modal = s.modal;
   for (;;) {
     bool solver_limit = false;  // static_error: a doubled count the eigen-solver could not deliver
@@ -899,7 +900,12 @@ void craigBamptonStage(BuildState& s) {
   cb.normal = &s.modal.vectors;
   Stopwatch swr;
   swr.start();
+  // The fixed-interface eigen-solve factorised this same K (shift 0): its
+  // factor serves the constraint modes, and is released after them.
+  cb.factored = s.modal.factor_of_K.h;
   CraigBamptonBasis basis = constraintModes(s.comm, cb);
+  if (cb.factored) basis.factorisation = s.modal.factorisation;
+  s.modal.factor_of_K = OwnedMat();
   res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
   swr.start();
   res.constraint_modes = cb.n_boundary;

@@ -53,34 +53,37 @@ CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in) 
   CraigBamptonBasis out;
   out.n_boundary = nb;
   out.B.resize(N, nb + nk);
-  // Constraint modes: one factorisation of the fixed-interface K, nb solves;
+  // Constraint modes: one factorisation of the fixed-interface K (the
+  // eigen-solve's when given), nb solves;
   // each right-hand side and solution is one vector at a time.
   {
-    OwnedKsp ksp = choleskySolver(comm, in.K_fixed);
+    OwnedKsp ksp;
+    if (!in.factored) ksp = choleskySolver(comm, in.K_fixed);
     OwnedVec b, x;
     check(MatCreateVecs(in.K_fixed, &x, &b), "MatCreateVecs");
     for (long j = 0; j < nb; ++j) {
       Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
       for (const auto& [node, rows] : in.K_lifts) f.segment<6>(6 * node) = rows.col(j);
       setLocal(b, -reduceForce(*in.fixed, f));
-      check(KSPSolve(ksp, b, x), "KSPSolve");
-      KSPConvergedReason why;
-      check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-      if (why < 0) {
-        // MUMPS out of memory fails the factorisation the same way: said as such.
+      if (in.factored) {
+        // A factor the eigen-solve completed: K_fixed is not singular.
+        check(MatSolve(in.factored, b, x), "MatSolve");
+      } else {
+        check(KSPSolve(ksp, b, x), "KSPSolve");
+        KSPConvergedReason why;
+        check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
         PC pc;
         check(KSPGetPC(ksp, &pc), "KSPGetPC");
-        throwIfOutOfMemory(pc, 0, "the fixed-interface stiffness");
-        throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
-                                 "rigid motions free: clamp the boundary interfaces, or pin at least three)");
+        if (why < 0) {
+          // MUMPS out of memory fails the factorisation the same way: said as such.
+          throwIfOutOfMemory(pc, 0, "the fixed-interface stiffness");
+          throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
+                                   "rigid motions free: clamp the boundary interfaces, or pin at least three)");
+        }
+        if (j == 0) out.factorisation = mumpsMemory(pc);
       }
       out.B.col(j) = in.fixed->expand(gatherAll(x));
       for (const auto& [node, rows] : in.lifts) out.B.col(j).segment<6>(6 * node) += rows.col(j);
-      if (j == 0) {
-        PC pc;
-        check(KSPGetPC(ksp, &pc), "KSPGetPC");
-        out.factorisation = mumpsMemory(pc);
-      }
     }
   }
   for (long j = 0; j < nk; ++j) out.B.col(nb + j) = in.fixed->expand(in.normal->col(j));

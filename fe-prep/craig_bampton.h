@@ -50,11 +50,15 @@ struct ConstraintModeInput {
   NodeRows lifts;                   // l_j on the nodes they touch
   NodeRows K_lifts;                 // K l_j (from the elements), on the nodes it touches
   const Eigen::MatrixXd* normal = nullptr;  // (T's reduced DOF, n_normal) fixed-interface modes
+  // K_fixed's factor from the fixed-interface eigen-solve (shift 0,
+  // `ModalResult::factor_of_K`), or null: factorise here.
+  Mat factored = nullptr;
 };
 
 // The basis B = [Psi Phi] (6 n, n_boundary + n_normal), full nodal vectors:
 // the constraint modes solved one right-hand side at a time on one MUMPS
-// factorisation of the fixed-interface K (freed before returning), the
+// factorisation of the fixed-interface K (its own, freed before returning, or
+// the fixed-interface eigen-solve's, `factored`), the
 // fixed-interface modes expanded beside them. B is the only dense block of
 // this size the reduction holds while the factor is alive.
 struct CraigBamptonBasis {

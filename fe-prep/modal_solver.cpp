@@ -202,7 +202,8 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     const long nev = std::min<long>(wanted + r, massive);
     OwnedEps eps;
     check(EPSCreate(comm, &eps), "EPSCreate");
-    const PC pc = setUpEigenSolver(eps, K, M, nev, massive, request.tolerance, r > 0 ? request.shift : 0.0);
+    const double sigma = r > 0 ? request.shift : 0.0;
+    const PC pc = setUpEigenSolver(eps, K, M, nev, massive, request.tolerance, sigma);
     MonitorContext mctx{&progress, nev};
     check(EPSMonitorSet(eps, monitor, &mctx, nullptr), "EPSMonitorSet");
     check(EPSSetFromOptions(eps), "EPSSetFromOptions");
@@ -254,6 +255,15 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
     for (long k = 0; k < r; ++k) {
       result.rigid_eigenvalues(k) = removed[static_cast<std::size_t>(k)].lambda;
       result.rigid_projection_min = std::min(result.rigid_projection_min, removed[static_cast<std::size_t>(k)].rigid_share);
+    }
+    if (request.keep_factor && sigma == 0.0) {
+      // The spectral transformation factorised K - 0 M = K: one more
+      // reference keeps the factor past the EPS's destruction (which resets
+      // its solver and releases the rest).
+      Mat F = nullptr;
+      check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+      check(PetscObjectReference(reinterpret_cast<PetscObject>(F)), "PetscObjectReference");
+      result.factor_of_K = OwnedMat(F);
     }
     break;
   }

@@ -26,6 +26,11 @@ struct ModalRequest {
   // DOF that carries mass from the constrained problem, and the sign
   // convention looks at the other rows only.
   long multipliers = 0;
+  // Keep the shift-invert solver when the shift is 0, i.e. when it holds a
+  // factorisation of K itself (a reference without rigid modes): the
+  // Craig-Bampton constraint modes solve with that same K, so they need not
+  // factorise it again.
+  bool keep_factor = false;
 };
 
 struct ModalResult {
@@ -36,6 +41,9 @@ struct ModalResult {
   double rigid_projection_max = 0.0;  // largest rigid-space share among the kept modes
   long iterations = 0;
   MumpsMemory factorisation;          // the shift-invert factorisation's (the largest of the solves)
+  // With keep_factor and shift 0: the eigen-solve's MUMPS factor of K, for
+  // MatSolve (its memory stays held until this is released).
+  OwnedMat factor_of_K;
 };
 
 // The request cannot be met: more modes than the body has with a finite
