@@ -56,7 +56,8 @@ def run_differences(yaml_h5, deck_h5):
             out[f"energy/{k} [of the largest energy]"] = float(np.abs(a[f"energy/{k}"][()] - b[f"energy/{k}"][()]).max() / emax)
         if "margins/latches" in a:
             la, lb = a["margins/latches"][()], b["margins/latches"][()]
-            out["latch times [s]"] = float(np.abs(la[:, 0] - lb[:, 0]).max()) if la.shape == lb.shape else np.inf
+            out["latch times [s]"] = (np.inf if la.shape != lb.shape else
+                                      float(np.abs(la[:, 0] - lb[:, 0]).max()) if la.size else 0.0)
         for attr in ("steps", "rhs_evaluations"):
             out[attr + " (yaml, deck)"] = (int(a.attrs[attr]), int(b.attrs[attr]))
         out["rtol"] = float(a.attrs["rtol"])
