@@ -364,30 +364,35 @@ void writeSectionBasis(H5File& f, const StressRecoveryData& d, long n_el) {
   f.writeMatrix("/stress/stations", d.beam_stations);
 }
 
-// /mesh/centroids and, for shells, /stress/strains and /stress/plies/*
-// (docs/body-file.md, "Stress recovery data").
+// /mesh/centroids and, for shells, /stress/strains and /stress/plies/*, for
+// beams /stress/section_resultants (docs/body-file.md, "Stress recovery
+// data"). A mixed body's /mesh/centroids lists its triangles, then its beams.
 void writeStressData(H5File& f, const StressRecoveryData& d, long n_el, int nm) {
   const std::string where = f.path() + ": stress recovery data: ";
+  const long n_beam = d.hasBeam() ? d.beam_resultants.rows() / 6 : 0;
+  const long n_shell = n_el - n_beam;
+  if (d.hasBeam() && (d.beam_resultants.rows() % 6 != 0 || (!d.hasShell() && n_beam != n_el)))
+    throw std::invalid_argument(where + "beam section resultants must be (6 n_beams, n_modes)");
   if (d.centroids.rows() != n_el || d.centroids.cols() != 3)
     throw std::invalid_argument(where + "centroids must be (n_elements, 3) = (" + str(n_el) + ", 3)");
   f.writeMatrix("/mesh/centroids", d.centroids);
   if (d.hasBeam()) {
-    if (d.beam_resultants.rows() != 6 * n_el || d.beam_resultants.cols() != nm)
-      throw std::invalid_argument(where + "beam section resultants must be (6 n_elements, n_modes)");
+    if (d.beam_resultants.rows() != 6 * n_beam || d.beam_resultants.cols() != nm)
+      throw std::invalid_argument(where + "beam section resultants must be (6 n_beams, n_modes)");
     // Column-major (6 n_el, nm) is C-order (nm, n_el, 6), as /modes/shapes.
-    writeArray(f, "/stress/section_resultants", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_el), 6},
+    writeArray(f, "/stress/section_resultants", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_beam), 6},
                d.beam_resultants.data());
-    writeSectionBasis(f, d, n_el);
+    writeSectionBasis(f, d, n_beam);
   }
   if (!d.hasShell()) return;
   const long np = d.plies.size();
-  if (d.shell_strains.rows() != 6 * n_el || d.shell_strains.cols() != nm)
-    throw std::invalid_argument(where + "shell strains must be (6 n_elements, n_modes)");
+  if (d.shell_strains.rows() != 6 * n_shell || d.shell_strains.cols() != nm)
+    throw std::invalid_argument(where + "shell strains must be (6 n_triangles, n_modes)");
   if (d.plies.angle_deg.size() != np || static_cast<long>(d.plies.stiffness.size()) != np ||
       (d.plies.strength.rows() != 0 && d.plies.strength.rows() != np))
     throw std::invalid_argument(where + "the ply table's columns differ in length");
   // Column-major (6 n_el, nm) is C-order (nm, n_el, 6), as /modes/shapes.
-  writeArray(f, "/stress/strains", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_el), 6}, d.shell_strains.data());
+  writeArray(f, "/stress/strains", {static_cast<hsize_t>(nm), static_cast<hsize_t>(n_shell), 6}, d.shell_strains.data());
   f.writeVector("/stress/plies/z_mid", d.plies.z_mid);
   f.writeVector("/stress/plies/angle_deg", d.plies.angle_deg);
   std::vector<double> q;
@@ -704,51 +709,14 @@ FlexBodyFile readFlexBody(const std::string& path, int n_modes, FlexBodyParts pa
   return out;
 }
 
-StressRecoveryData readStressData(const std::string& path, int n_modes) {
-  H5File f(path, H5File::Mode::Read);
-  f.checkFormat("flexbody", kFormatVersion);
-  const int in_file = modeCount(f);
-  if (n_modes < 0 || n_modes > in_file)
-    throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
-                  " asked");
-  const bool beam = f.exists("/stress/section_resultants");
-  // A body of shell and beam elements (a stiffened panel) gets none from fe-prep
-  // yet: rebuilding would not help, so say which body it is.
-  if (!f.exists("/mesh/centroids") && f.exists("/mesh/triangles") && f.exists("/mesh/beams"))
-    throw H5Error(path + ": no stress recovery data: the body mixes shell and beam elements, for which fe-prep "
-                  "writes none yet (docs/fe-prep.md, \"General bodies\"); its modes and interfaces are usable");
-  if (!f.exists("/mesh/centroids") || (!f.exists("/stress/strains") && !beam))
-    throw H5Error(path + ": no stress recovery data (/mesh/centroids with /stress/strains for shells or "
-                  "/stress/section_resultants for beams); a body file written by this fe-prep has them (rebuild it)");
-  StressRecoveryData d;
-  const std::vector<hsize_t> cs = f.shape("/mesh/centroids");
-  if (cs.size() != 2 || cs[1] != 3) throw H5Error(path + ": /mesh/centroids must be (n_elements, 3), got " + dimsText(cs));
-  const long ne = static_cast<long>(cs[0]);
-  d.centroids = rowMajor(readLeading(f, "/mesh/centroids", {cs[0], 3}, {true, true}), ne, 3);
+namespace {
+
+// The shell part of readStressData: /stress/strains over the une triangles
+// and the ply table /stress/plies/*.
+void readShellStressData(H5File& f, const std::string& path, hsize_t une, int n_modes, StressRecoveryData& d) {
+  const long ne = static_cast<long>(une);
   const hsize_t um = static_cast<hsize_t>(n_modes);
-  if (beam) {
-    const std::vector<double> r = readLeading(f, "/stress/section_resultants", {um, cs[0], 6}, {false, true, true});
-    d.beam_resultants = Eigen::Map<const Eigen::MatrixXd>(r.data(), 6 * ne, n_modes);
-    if (f.exists("/stress/section/ply_stress")) {
-      const std::vector<hsize_t> ss = f.shape("/stress/section/centroids");
-      if (ss.size() != 2 || ss[1] != 2) throw H5Error(path + ": /stress/section/centroids must be (n, 2)");
-      const long ns = static_cast<long>(ss[0]);
-      SectionStressBasis& s = d.section;
-      const std::vector<double> ps = readLeading(f, "/stress/section/ply_stress", {6, ss[0], 3}, {true, true, true});
-      s.ply_stress = Eigen::Map<const Eigen::MatrixXd>(ps.data(), 3 * ns, 6);
-      s.centroids = rowMajor(readLeading(f, "/stress/section/centroids", {ss[0], 2}, {true, true}), ns, 2);
-      s.strength = rowMajor(readLeading(f, "/stress/section/strength", {ss[0], 5}, {true, true}), ns, 5);
-      s.material = f.readStrings("/stress/section/material");
-      s.has_plies = f.readIntVector("/stress/section/has_plies");
-      const std::vector<double> L = readLeading(f, "/stress/beam_lengths", {cs[0]}, {true});
-      d.beam_lengths = Eigen::Map<const Eigen::VectorXd>(L.data(), ne);
-      d.beam_stations = rowMajor(readLeading(f, "/stress/stations", {3 * cs[0], 3}, {true, true}), 3 * ne, 3);
-      if (static_cast<long>(s.material.size()) != ns || static_cast<long>(s.has_plies.size()) != ns)
-        throw H5Error(path + ": /stress/section/material and has_plies must have one entry per section element");
-    }
-    return d;
-  }
-  const std::vector<double> st = readLeading(f, "/stress/strains", {um, cs[0], 6}, {false, true, true});
+  const std::vector<double> st = readLeading(f, "/stress/strains", {um, une, 6}, {false, true, true});
   d.shell_strains = Eigen::Map<const Eigen::MatrixXd>(st.data(), 6 * ne, n_modes);
   const std::vector<hsize_t> zs = f.shape("/stress/plies/z_mid");
   if (zs.size() != 1 || zs[0] == 0) throw H5Error(path + ": /stress/plies/z_mid must be (n_plies), n_plies > 0");
@@ -763,6 +731,64 @@ StressRecoveryData readStressData(const std::string& path, int n_modes) {
     d.plies.strength = rowMajor(readLeading(f, "/stress/plies/strength", {np, 5}, {true, true}), static_cast<long>(np), 5);
     if ((d.plies.strength.array() <= 0).any())
       throw H5Error(path + ": /stress/plies/strength holds a non-positive strength");
+  }
+}
+
+}  // namespace
+
+StressRecoveryData readStressData(const std::string& path, int n_modes) {
+  H5File f(path, H5File::Mode::Read);
+  f.checkFormat("flexbody", kFormatVersion);
+  const int in_file = modeCount(f);
+  if (n_modes < 0 || n_modes > in_file)
+    throw H5Error(path + ": the body file holds " + std::to_string(in_file) + " modes, " + std::to_string(n_modes) +
+                  " asked");
+  const bool beam = f.exists("/stress/section_resultants");
+  const bool shell = f.exists("/stress/strains");
+  if (!f.exists("/mesh/centroids") && f.exists("/mesh/triangles") && f.exists("/mesh/beams"))
+    throw H5Error(path + ": no stress recovery data: the body mixes shell and beam elements, and the fe-prep that "
+                  "wrote it wrote none for such bodies; rebuild it with this fe-prep (docs/stresses.md, \"Mixed bodies\")");
+  if (!f.exists("/mesh/centroids") || (!shell && !beam))
+    throw H5Error(path + ": no stress recovery data (/mesh/centroids with /stress/strains for shells or "
+                  "/stress/section_resultants for beams); a body file written by this fe-prep has them (rebuild it)");
+  StressRecoveryData d;
+  const std::vector<hsize_t> cs = f.shape("/mesh/centroids");
+  if (cs.size() != 2 || cs[1] != 3) throw H5Error(path + ": /mesh/centroids must be (n_elements, 3), got " + dimsText(cs));
+  // A mixed body: the triangles' centroids, then the beams' midpoints.
+  hsize_t n_shell = shell ? cs[0] : 0;
+  if (shell && beam) {
+    const std::vector<hsize_t> rs = f.shape("/stress/section_resultants");
+    if (rs.size() != 3 || rs[1] > cs[0])
+      throw H5Error(path + ": /stress/section_resultants must be (n_modes, n_beams, 6) with n_beams at most the " +
+                    std::to_string(cs[0]) + " rows of /mesh/centroids, got " + dimsText(rs));
+    n_shell = cs[0] - rs[1];
+  }
+  const std::vector<double> all = readLeading(f, "/mesh/centroids", {cs[0], 3}, {true, true});
+  const Eigen::MatrixXd centroids = rowMajor(all, static_cast<long>(cs[0]), 3);
+  const hsize_t um = static_cast<hsize_t>(n_modes);
+  if (shell) readShellStressData(f, path, n_shell, n_modes, d);
+  d.centroids = centroids;
+  if (!beam) return d;
+  const long ne = static_cast<long>(cs[0] - n_shell);
+  const hsize_t ub = static_cast<hsize_t>(ne);
+  const std::vector<double> r = readLeading(f, "/stress/section_resultants", {um, ub, 6}, {false, true, true});
+  d.beam_resultants = Eigen::Map<const Eigen::MatrixXd>(r.data(), 6 * ne, n_modes);
+  if (f.exists("/stress/section/ply_stress")) {
+    const std::vector<hsize_t> ss = f.shape("/stress/section/centroids");
+    if (ss.size() != 2 || ss[1] != 2) throw H5Error(path + ": /stress/section/centroids must be (n, 2)");
+    const long ns = static_cast<long>(ss[0]);
+    SectionStressBasis& s = d.section;
+    const std::vector<double> ps = readLeading(f, "/stress/section/ply_stress", {6, ss[0], 3}, {true, true, true});
+    s.ply_stress = Eigen::Map<const Eigen::MatrixXd>(ps.data(), 3 * ns, 6);
+    s.centroids = rowMajor(readLeading(f, "/stress/section/centroids", {ss[0], 2}, {true, true}), ns, 2);
+    s.strength = rowMajor(readLeading(f, "/stress/section/strength", {ss[0], 5}, {true, true}), ns, 5);
+    s.material = f.readStrings("/stress/section/material");
+    s.has_plies = f.readIntVector("/stress/section/has_plies");
+    const std::vector<double> L = readLeading(f, "/stress/beam_lengths", {ub}, {true});
+    d.beam_lengths = Eigen::Map<const Eigen::VectorXd>(L.data(), ne);
+    d.beam_stations = rowMajor(readLeading(f, "/stress/stations", {3 * ub, 3}, {true, true}), 3 * ne, 3);
+    if (static_cast<long>(s.material.size()) != ns || static_cast<long>(s.has_plies.size()) != ns)
+      throw H5Error(path + ": /stress/section/material and has_plies must have one entry per section element");
   }
   return d;
 }

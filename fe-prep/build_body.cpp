@@ -1,4 +1,5 @@
 #include "fe-prep/build_body.h"
+#include "fe-prep/stress_recovery_data.h"
 #include "fe-prep/region_records.h"
 
 #include <sys/resource.h>
@@ -120,14 +121,6 @@ class Stopwatch {
   double c0_ = 0.0;
 };
 
-// What stress recovery needs (docs/stresses.md): every element's centroid
-// (beams: midpoint) and, for shells, the generalised strains at the centroid
-// per mode, through the element's own strain operator (the one its stiffness
-// integrates, with its own laminate, kind and material axis), plus the ply
-// table; for beams, the section resultants at the midpoint per mode, each with
-// its own section and x2 axis. The body file holds one ply table and either
-// shells or beams: a body whose shell regions have different plies, or that
-// mixes shells and beams, gets none (`note` says so).
 // The recovery basis of a mesh-file body's beams: that of the section file all
 // its used beam regions share; none (with `note` saying why) when they use
 // different sections and any of them has a basis.
@@ -154,84 +147,114 @@ SectionStressBasis regionsSectionBasis(const GeneralMeshSpec& g, const Mesh& mes
   return first->section_basis;
 }
 
-StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes, std::string& note) {
-  StressRecoveryData d;
+// The shell part: every triangle's centroid and generalised strains per mode,
+// and the one ply table; false (with `note`) when the shell regions differ in plies.
+bool shellStressData(const Mesh& mesh, const Eigen::MatrixXd& shapes, StressRecoveryData& d, std::string& note) {
+  for (const auto& p : mesh.shell_properties)
+    if (p.plies.z_mid != mesh.shell_properties.front().plies.z_mid ||
+        p.plies.angle_deg != mesh.shell_properties.front().plies.angle_deg ||
+        p.plies.stiffness != mesh.shell_properties.front().plies.stiffness ||
+        p.plies.strength != mesh.shell_properties.front().plies.strength) {
+      note = "no stress recovery data: the shell regions have different ply tables (the body file holds one)";
+      return false;
+    }
   const long nm = shapes.cols();
-  if (!mesh.triangles.empty()) {
-    for (const auto& p : mesh.shell_properties)
-      if (p.plies.z_mid != mesh.shell_properties.front().plies.z_mid ||
-          p.plies.angle_deg != mesh.shell_properties.front().plies.angle_deg ||
-          p.plies.stiffness != mesh.shell_properties.front().plies.stiffness ||
-          p.plies.strength != mesh.shell_properties.front().plies.strength) {
-        note = "no stress recovery data: the shell regions have different ply tables (the body file holds one)";
-        return d;
-      }
-    if (!mesh.beams.empty()) {
-      note = "no stress recovery data: the body mixes shells and beams (the body file holds either)";
-      return d;
+  const long ne = static_cast<long>(mesh.triangles.size());
+  d.centroids.resize(ne, 3);
+  d.shell_strains.resize(6 * ne, nm);
+  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
+  Eigen::Matrix<double, 18, Eigen::Dynamic> q(18, nm);
+  for (long e = 0; e < ne; ++e) {
+    const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
+    Eigen::Matrix3d xyz;
+    for (int i = 0; i < 3; ++i) {
+      xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
+      q.middleRows<6>(6 * i) = shapes.middleRows<6>(6 * t[static_cast<std::size_t>(i)]);
     }
-    const long ne = static_cast<long>(mesh.triangles.size());
-    d.centroids.resize(ne, 3);
-    d.shell_strains.resize(6 * ne, nm);
-    const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
-    Eigen::Matrix<double, 18, Eigen::Dynamic> q(18, nm);
-    for (long e = 0; e < ne; ++e) {
-      const auto& t = mesh.triangles[static_cast<std::size_t>(e)];
-      Eigen::Matrix3d xyz;
-      for (int i = 0; i < 3; ++i) {
-        xyz.row(i) = mesh.nodes.row(t[static_cast<std::size_t>(i)]);
-        q.middleRows<6>(6 * i) = shapes.middleRows<6>(6 * t[static_cast<std::size_t>(i)]);
-      }
-      d.centroids.row(e) = xyz.colwise().mean();
-      const ShellProperty& p = mesh.shellProperty(e);
-      d.shell_strains.middleRows<6>(6 * e) =
-          fe::shellStrainOperator(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)], centre) * q;
-    }
-    d.plies = mesh.shell_properties.front().plies;
+    d.centroids.row(e) = xyz.colwise().mean();
+    const ShellProperty& p = mesh.shellProperty(e);
+    d.shell_strains.middleRows<6>(6 * e) =
+        fe::shellStrainOperator(xyz, p.laminate, p.kind, mesh.triangle_axis[static_cast<std::size_t>(e)], centre) * q;
+  }
+  d.plies = mesh.shell_properties.front().plies;
+  return true;
+}
+
+// The beam part: every beam's midpoint (into `midpoints`), its section
+// resultants per mode and, where the sections have one, the recovery basis.
+void beamStressData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes, StressRecoveryData& d,
+                    Eigen::MatrixXd& midpoints, std::string& note) {
+  const long nm = shapes.cols();
+  const long ne = static_cast<long>(mesh.beams.size());
+  midpoints.resize(ne, 3);
+  for (long e = 0; e < ne; ++e) {
+    const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+    midpoints.row(e) = 0.5 * (mesh.nodes.row(b[0]) + mesh.nodes.row(b[1]));
+  }
+  // Section resultants at the midpoints per mode, by the element's own
+  // equilibrium (fc::fe::beamMidpointResultants, docs/elements.md).
+  if (mesh.beam_properties.size() == 1 &&
+      std::all_of(mesh.beam_x2.begin(), mesh.beam_x2.end(), [&](const Eigen::Vector3d& v) { return v == mesh.beam_x2.front(); })) {
+    d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, mesh.beam_x2.front(),
+                                                mesh.beam_properties.front().Ks, shapes);
   } else {
-    const long ne = static_cast<long>(mesh.beams.size());
-    d.centroids.resize(ne, 3);
+    d.beam_resultants.resize(6 * ne, nm);
     for (long e = 0; e < ne; ++e) {
       const auto& b = mesh.beams[static_cast<std::size_t>(e)];
-      d.centroids.row(e) = 0.5 * (mesh.nodes.row(b[0]) + mesh.nodes.row(b[1]));
-    }
-    // Section resultants at the midpoints per mode, by the element's own
-    // equilibrium (fc::fe::beamMidpointResultants, docs/elements.md).
-    if (mesh.beam_properties.size() == 1 &&
-        std::all_of(mesh.beam_x2.begin(), mesh.beam_x2.end(), [&](const Eigen::Vector3d& v) { return v == mesh.beam_x2.front(); })) {
-      d.beam_resultants = fe::beamModalResultants(mesh.nodes, mesh.beams, mesh.beam_x2.front(),
-                                                  mesh.beam_properties.front().Ks, shapes);
-    } else {
-      d.beam_resultants.resize(6 * ne, nm);
-      for (long e = 0; e < ne; ++e) {
-        const auto& b = mesh.beams[static_cast<std::size_t>(e)];
-        Eigen::Matrix<double, 12, Eigen::Dynamic> q(12, nm);
-        q.topRows<6>() = shapes.middleRows<6>(6 * b[0]);
-        q.bottomRows<6>() = shapes.middleRows<6>(6 * b[1]);
-        d.beam_resultants.middleRows<6>(6 * e) =
-            fe::beamMidpointResultants(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
-                                       mesh.beam_x2[static_cast<std::size_t>(e)], mesh.beamProperty(e).Ks) * q;
-      }
-    }
-    // The section's stresses per unit resultant, for ply stresses at stations:
-    // a beam: body's, or the one section file every beam region of a
-    // mesh-file body uses (the body file holds one basis).
-    if (spec.beam) d.section = spec.beam->section_basis;
-    if (spec.general) d.section = regionsSectionBasis(*spec.general, mesh, note);
-    if (!d.section.empty()) {
-      d.beam_lengths.resize(ne);
-      d.beam_stations.resize(3 * ne, 3);
-      for (long e = 0; e < ne; ++e) {
-        const auto& b = mesh.beams[static_cast<std::size_t>(e)];
-        d.beam_lengths(e) = (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm();
-        d.beam_stations.row(3 * e) = mesh.nodes.row(b[0]);
-        d.beam_stations.row(3 * e + 1) = d.centroids.row(e);
-        d.beam_stations.row(3 * e + 2) = mesh.nodes.row(b[1]);
-      }
+      Eigen::Matrix<double, 12, Eigen::Dynamic> q(12, nm);
+      q.topRows<6>() = shapes.middleRows<6>(6 * b[0]);
+      q.bottomRows<6>() = shapes.middleRows<6>(6 * b[1]);
+      d.beam_resultants.middleRows<6>(6 * e) =
+          fe::beamMidpointResultants(mesh.nodes.row(b[0]).transpose(), mesh.nodes.row(b[1]).transpose(),
+                                     mesh.beam_x2[static_cast<std::size_t>(e)], mesh.beamProperty(e).Ks) * q;
     }
   }
+  // The section's stresses per unit resultant, for ply stresses at stations:
+  // a beam: body's, or the one section file every beam region of a
+  // mesh-file body uses (the body file holds one basis).
+  if (spec.beam) d.section = spec.beam->section_basis;
+  if (spec.general) d.section = regionsSectionBasis(*spec.general, mesh, note);
+  if (d.section.empty()) return;
+  d.beam_lengths.resize(ne);
+  d.beam_stations.resize(3 * ne, 3);
+  for (long e = 0; e < ne; ++e) {
+    const auto& b = mesh.beams[static_cast<std::size_t>(e)];
+    d.beam_lengths(e) = (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm();
+    d.beam_stations.row(3 * e) = mesh.nodes.row(b[0]);
+    d.beam_stations.row(3 * e + 1) = midpoints.row(e);
+    d.beam_stations.row(3 * e + 2) = mesh.nodes.row(b[1]);
+  }
+}
+
+}  // namespace
+
+// What stress recovery needs (docs/stresses.md): every element's centroid
+// (beams: midpoint) and, for shells, the generalised strains at the centroid
+// per mode, through the element's own strain operator (the one its stiffness
+// integrates, with its own laminate, kind and material axis), plus the ply
+// table; for beams, the section resultants at the midpoint per mode, each with
+// its own section and x2 axis; a body of both gets both. The body file holds
+// one ply table: a body whose shell regions have different plies gets none
+// (`note` says so).
+StressRecoveryData stressRecoveryData(const Mesh& mesh, const BodySpec& spec, const Eigen::MatrixXd& shapes, std::string& note) {
+  StressRecoveryData d;
+  if (!mesh.triangles.empty() && !shellStressData(mesh, shapes, d, note)) return {};
+  if (mesh.beams.empty()) return d;
+  Eigen::MatrixXd midpoints;
+  beamStressData(mesh, spec, shapes, d, midpoints, note);
+  if (mesh.triangles.empty()) {
+    d.centroids = std::move(midpoints);
+    return d;
+  }
+  // A body of both (a stiffened panel, docs/stresses.md "Mixed bodies"): the
+  // triangles' centroids, then the beams' midpoints, as /mesh/centroids.
+  Eigen::MatrixXd all(d.centroids.rows() + midpoints.rows(), 3);
+  all << d.centroids, midpoints;
+  d.centroids = std::move(all);
   return d;
 }
+
+namespace {
 
 // "skin: 648 triangles (dst), 1.36 kg, laminate skin_layup, fibre axis [1, 0, 0]" per property.
 std::vector<std::string> regionSummary(const BodySpec& spec, const Mesh& mesh) {

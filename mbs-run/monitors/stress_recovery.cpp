@@ -1,4 +1,5 @@
 #include "mbs-run/monitors/stress_recovery.h"
+#include "mbs-run/monitors/stress_recovery_mixed.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -57,6 +58,36 @@ long StressOutput::size() const {
   return n;
 }
 
+namespace {
+
+// The beams' ply stresses, Tsai-Wu and Hashin indices at their stations from
+// their midpoint section forces `forces` (n_el, 6): stations (n_el, 3) x
+// section elements (ns) x [s_11, s_22, t_12], C order.
+void beamPlies(const BodyStressRecovery& r, long ns, const Eigen::VectorXd& forces, Eigen::VectorXd& ply,
+               Eigen::VectorXd& fi, Eigen::VectorXd& hs) {
+  const long ne = r.beam_lengths.size();
+  ply.resize(3 * 3 * ne * ns);
+  fi.setZero(3 * ne * ns);
+  hs.setZero(4 * 3 * ne * ns);
+  for (long e = 0; e < ne; ++e) {
+    const Vector6d mid = forces.segment<6>(6 * e);
+    for (int j = 0; j < 3; ++j) {
+      const long st = 3 * e + j;
+      const Vector6d R = resultantsAtStation(mid, 0.5 * (j - 1) * r.beam_lengths(e));
+      ply.segment(3 * ns * st, 3 * ns).noalias() = r.section_ply * R;
+      for (long k = 0; k < ns; ++k)
+        if (r.section_has_strength[static_cast<std::size_t>(k)]) {
+          const Eigen::Vector3d sk = ply.segment<3>(3 * (st * ns + k));
+          fi(st * ns + k) = tsaiWuIndex(r.section_tsai_wu[static_cast<std::size_t>(k)], sk);
+          const HashinIndices x = hashinIndices(r.section_strength[static_cast<std::size_t>(k)], sk);
+          hs.segment<4>(4 * (st * ns + k)) << x.fibre_tension, x.fibre_compression, x.matrix_tension, x.matrix_compression;
+        }
+    }
+  }
+}
+
+}  // namespace
+
 void BodyStressRecovery::recover(const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>& fields) const {
   fields.resize(outputs.size());
   switch (kind) {
@@ -94,6 +125,13 @@ void BodyStressRecovery::recover(const Eigen::VectorXd& q, std::vector<Eigen::Ve
       if (section_ply.rows() > 0) recoverBeamPlies(fields);
       break;
   }
+  // A mixed body's beams (stressRecovery): their outputs follow the shells'.
+  if (kind == Kind::Shell && beam_resultants.rows() > 0) {
+    const std::size_t k = mixedShellOutputs(*this);
+    fields[k] = beamSectionForces(beam_resultants, q);
+    if (section_ply.rows() > 0)
+      beamPlies(*this, section_ply.rows() / 3, fields[k], fields[k + 1], fields[k + 2], fields[k + 3]);
+  }
 }
 
 std::shared_ptr<const BodyStressRecovery> shellStressRecovery(const StressRecoveryData& d, const std::string& file) {
@@ -127,29 +165,8 @@ Vector6d resultantsAtStation(const Vector6d& mid, double s) {
 }
 
 void BodyStressRecovery::recoverBeamPlies(std::vector<Eigen::VectorXd>& fields) const {
-  // Stations (n_el, 3) x section elements (n_se) x [s_11, s_22, t_12], C order.
-  const long ns = n_plies, ne = beam_lengths.size();
-  Eigen::VectorXd& ply = fields[static_cast<std::size_t>(ply_output)];
-  Eigen::VectorXd& fi = fields[static_cast<std::size_t>(failure_output)];
-  Eigen::VectorXd& hs = fields[static_cast<std::size_t>(hashin_output)];
-  ply.resize(3 * 3 * ne * ns);
-  fi.setZero(3 * ne * ns);
-  hs.setZero(4 * 3 * ne * ns);
-  for (long e = 0; e < ne; ++e) {
-    const Vector6d mid = fields[0].segment<6>(6 * e);
-    for (int j = 0; j < 3; ++j) {
-      const long st = 3 * e + j;
-      const Vector6d R = resultantsAtStation(mid, 0.5 * (j - 1) * beam_lengths(e));
-      ply.segment(3 * ns * st, 3 * ns).noalias() = section_ply * R;
-      for (long k = 0; k < ns; ++k)
-        if (section_has_strength[static_cast<std::size_t>(k)]) {
-          const Eigen::Vector3d sk = ply.segment<3>(3 * (st * ns + k));
-          fi(st * ns + k) = tsaiWuIndex(section_tsai_wu[static_cast<std::size_t>(k)], sk);
-          const HashinIndices x = hashinIndices(section_strength[static_cast<std::size_t>(k)], sk);
-          hs.segment<4>(4 * (st * ns + k)) << x.fibre_tension, x.fibre_compression, x.matrix_tension, x.matrix_compression;
-        }
-    }
-  }
+  beamPlies(*this, n_plies, fields[0], fields[static_cast<std::size_t>(ply_output)],
+            fields[static_cast<std::size_t>(failure_output)], fields[static_cast<std::size_t>(hashin_output)]);
 }
 
 std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecoveryData& d, const std::string& file) {
@@ -195,9 +212,46 @@ std::shared_ptr<const BodyStressRecovery> beamStressRecovery(const StressRecover
   return r;
 }
 
+std::size_t mixedShellOutputs(const BodyStressRecovery& r) {
+  if (r.kind != BodyStressRecovery::Kind::Shell || r.beam_resultants.rows() == 0) return 0;
+  return r.failure_output >= 0 ? 3 : 1;  // ply_stress [, failure_index, hashin] (shellStressRecovery)
+}
+
+std::shared_ptr<const BodyStressRecovery> stressRecovery(const StressRecoveryData& d, const std::string& file) {
+  if (!d.hasShell() || !d.hasBeam()) return d.hasBeam() ? beamStressRecovery(d, file) : shellStressRecovery(d, file);
+  // A mixed body: its triangles as a shell body's, its beams as a beam body's
+  // (their midpoints are the centroids' last rows), the two in one recovery.
+  const long nb = d.beam_resultants.rows() / 6, nt = d.centroids.rows() - nb;
+  if (nb <= 0 || nt <= 0 || d.shell_strains.rows() != 6 * nt)
+    throw std::invalid_argument(file + ": a body of shells and beams needs (n_triangles + n_beams) centroids, " +
+                                std::to_string(d.centroids.rows()) + " for " + std::to_string(d.shell_strains.rows() / 6) +
+                                " triangles and " + std::to_string(nb) + " beams");
+  StressRecoveryData shells;
+  shells.centroids = d.centroids.topRows(nt);
+  shells.shell_strains = d.shell_strains;
+  shells.plies = d.plies;
+  StressRecoveryData beams;
+  beams.centroids = d.centroids.bottomRows(nb);
+  beams.beam_resultants = d.beam_resultants;
+  beams.section = d.section;
+  beams.beam_lengths = d.beam_lengths;
+  beams.beam_stations = d.beam_stations;
+  auto r = std::make_shared<BodyStressRecovery>(*shellStressRecovery(shells, file));
+  const auto b = beamStressRecovery(beams, file);
+  r->beam_resultants = b->beam_resultants;
+  r->section_ply = b->section_ply;
+  r->beam_lengths = b->beam_lengths;
+  r->stations = b->stations;
+  r->section_has_strength = b->section_has_strength;
+  r->section_tsai_wu = b->section_tsai_wu;
+  r->section_strength = b->section_strength;
+  for (const StressOutput& o : b->outputs)
+    r->outputs.push_back({o.name == "section_forces" ? o.name : "beam_" + o.name, o.dims});
+  return r;
+}
+
 std::shared_ptr<const BodyStressRecovery> loadStressRecovery(const std::string& body_file, int n_modes) {
-  const StressRecoveryData d = readStressData(body_file, n_modes);
-  return d.hasBeam() ? beamStressRecovery(d, body_file) : shellStressRecovery(d, body_file);
+  return stressRecovery(readStressData(body_file, n_modes), body_file);
 }
 
 FailureLocation largestFailureIndex(const BodyStressRecovery& r, const Eigen::VectorXd& f) {
