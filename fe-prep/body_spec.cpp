@@ -373,7 +373,18 @@ InterfaceSpec parsePointInterface(const std::string& key, const InputNode& entry
   if (i.position.cwiseAbs().maxCoeff() > 1e3)
     p.fail("expected coordinates within 1000 m of the body's origin (SI units)");
   if (entry.isMap()) {
-    entry.allowKeys({"point", "coupling", "nodes"});
+    entry.allowKeys({"point", "coupling", "nodes", "bracket"});
+    if (entry.has("bracket")) {
+      if (!(spec.shell && spec.shell->rectangle))
+        entry["bracket"].fail("a bracket belongs to an interface of a rectangular panel (shell: {rectangle: ...})");
+      if (entry.has("coupling") || entry.has("nodes"))
+        entry["bracket"].fail("a bracket carries the point on one node; a patch (coupling, nodes) carries it already");
+      const Eigen::VectorXd b = entry["bracket"].asVector(2);
+      i.bracket = Eigen::Vector2d(b(0), b(1));
+      if (std::abs(b(0)) > spec.shell->length / 2 * (1 + 1e-9) || std::abs(b(1)) > spec.shell->width / 2 * (1 + 1e-9))
+        entry["bracket"].fail("the bracket's panel point (x, y) is outside the rectangle centred on the origin");
+      return i;
+    }
     const std::string c = entry["coupling"].asString();
     if (c == "rigid") i.coupling = Coupling::Rigid;
     else if (c == "distributing") i.coupling = Coupling::Distributing;
@@ -384,10 +395,12 @@ InterfaceSpec parsePointInterface(const std::string& key, const InputNode& entry
   if (spec.beam && (std::abs(i.position.x()) > spec.beam->length / 2 * (1 + 1e-9)))
     p.fail("the point's projection on the beam axis, x = " + std::to_string(i.position.x()) +
            ", is outside the beam [-length/2, length/2]");
-  if (spec.shell && spec.shell->rectangle &&
+  // A patch's point is its bracket's pin and may stand off the panel: its nodes are the patch's.
+  if (spec.shell && spec.shell->rectangle && i.coupling == Coupling::Node &&
       (std::abs(i.position.x()) > spec.shell->length / 2 * (1 + 1e-9) ||
        std::abs(i.position.y()) > spec.shell->width / 2 * (1 + 1e-9)))
-    p.fail("the point's projection on the panel, (x, y), is outside the rectangle centred on the origin");
+    p.fail("the point's projection on the panel, (x, y), is outside the rectangle centred on the origin "
+           "(a point off the panel needs a bracket: {point: [x, y, z], bracket: [x0, y0]} on a panel point)");
   return i;
 }
 

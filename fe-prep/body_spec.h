@@ -110,6 +110,10 @@ struct InterfaceSpec {
   std::string edge;             // nodes: {edge: NAME} or {set: NAME}
   Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();  // nodes: {box: [lo, hi]}
   InputNode nodes_node;
+  // A single-node interface on a rectangular panel carried by a bracket: the node at the panel point
+  // `bracket: [x, y]` carries the point rigidly, so the point may stand off the panel's edge (a hinge
+  // pin beyond it). Without it the node is the one at the point's projection.
+  std::optional<Eigen::Vector2d> bracket;
   // A Nastran deck's own: {grid: ID} (the grid's node) or {rbe: EID} (an RBE2's
   // rigid or an RBE3's distributing patch, its point the GN / REFGRID), resolved
   // with the deck (applyNastranDeck); an RBE3's weights as the deck gives them.

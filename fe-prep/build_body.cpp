@@ -386,8 +386,13 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
         r.size = spec.shell->size;
         r.max_triangles = spec.shell->max_triangles;
         r.box_graded_from = spec.shell->graded_from;
+        const double a = spec.shell->length / 2, b = spec.shell->width / 2;
         for (const auto& i : spec.interfaces) {
-          r.forced_points.emplace_back(i.position.x(), i.position.y());
+          // The node of a single-node interface (at its bracket's panel point, else at its projection); a
+          // patch's point needs a node only where it lies over the panel (off it, its bracket's pin).
+          if (i.bracket) r.forced_points.push_back(*i.bracket);
+          else if (i.coupling == Coupling::Node || (std::abs(i.position.x()) <= a && std::abs(i.position.y()) <= b))
+            r.forced_points.emplace_back(i.position.x(), i.position.y());
           // Box patches on the mid-surface (z = 0) are meshed conforming: the same region at every size.
           if (i.coupling != Coupling::Node && i.select == PatchSelect::Box && i.box_lo.z() <= 0.0 && i.box_hi.z() >= 0.0)
             r.conforming_boxes.emplace_back(i.box_lo.x(), i.box_lo.y(), i.box_hi.x(), i.box_hi.y());
@@ -527,7 +532,8 @@ void resolveInterfaces(BuildState& s) {
   for (const auto& i : spec.interfaces) {
     Eigen::Vector3d projection = i.position;
     if (spec.beam) projection = Eigen::Vector3d(i.position.x(), 0, 0);
-    else if (spec.shell && spec.shell->rectangle) projection.z() = 0.0;
+    else if (spec.shell && spec.shell->rectangle) projection = i.bracket ? Eigen::Vector3d(i.bracket->x(), i.bracket->y(), 0.0)
+                                                                         : Eigen::Vector3d(i.position.x(), i.position.y(), 0.0);
     s.interfaces.push_back(resolveInterface(s.mesh, i, projection));
     if (s.imported) {
       const std::string note = checkImportedInterface(*s.imported, s.interfaces.back(), i);

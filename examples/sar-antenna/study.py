@@ -230,7 +230,9 @@ def check_call(cmd, what):
 
 def cb_footprints(interfaces):
     """Bracket footprint box of every boundary interface (see CB_FOOTPRINT): {name: [[x0,y0,z0],[x1,y1,z1]]}."""
-    pts = {k: np.array(p[:2], float) for k, p in interfaces.items() if k not in CB_NOT_BOUNDARY}
+    # a pin on a bracket beyond the edge (docs/sar-antenna.md, "The hinge-2/3 gap"): the footprint is the bracket's
+    pts = {k: np.array(p["bracket"] if isinstance(p, dict) else p[:2], float)
+           for k, p in interfaces.items() if k not in CB_NOT_BOUNDARY}
     out = {}
     for k, p in pts.items():
         lo, hi = p - CB_FOOTPRINT, p + CB_FOOTPRINT
@@ -273,12 +275,14 @@ def make_panels(args, tri, cb_modes=None):
             boundary = cb_footprints(spec["body"]["interfaces"])
             for name, box in boundary.items():
                 p = spec["body"]["interfaces"][name]
+                p = p["point"] if isinstance(p, dict) else p   # the bracket's pin; the patch carries it
                 spec["body"]["interfaces"][name] = {"point": p, "coupling": "distributing", "nodes": {"box": box}}
             spec["body"]["reference"] = {"pin": list(boundary)}
             spec["body"]["reduction"] = "craig_bampton"
         if args.hinges == "distributed":
             for name in HINGES[panel]:
                 p = spec["body"]["interfaces"][name]
+                p = p["point"] if isinstance(p, dict) else p
                 spec["body"]["interfaces"][name] = {"point": p, "coupling": "distributing",
                                                     "nodes": {"within": HINGE_RADIUS}}
         ydir = os.path.join(args.out, "bodies")

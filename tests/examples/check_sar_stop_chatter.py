@@ -90,7 +90,10 @@ with h5py.File(res, "r") as f:
     balance = float(f.attrs["energy_balance_error"])
 
 # The run before the change (same model, same tolerance): t, rate before, rate after.
-before = [(6.340817239, -0.5832, 0.17496), (6.389880775, -0.312415, 0.0937244), (6.4004873, -0.0984893, None)]
+# Re-derived with the 40-mm hinge-2/3 gap (docs/sar-antenna.md, "The hinge-2/3 gap"; gap-free: 6.340817239 s,
+# -0.5832 -> 0.17496; 6.389880775 s, -0.312415 -> 0.0937244; 6.4004873 s, -0.0984893; rest at 6.4004873 s, pulled off
+# at 7.52 s): this script's own run, first three impacts as it prints them.
+before = [(6.433622166, -0.543612, 0.163083), (6.482951510, -0.289026, 0.086708), (6.493708701, -0.090770, None)]
 check(len(imp) >= 3, f"{len(imp)} impacts on H23")
 for k, (tk, vm, vp) in enumerate(before[:len(imp)]):
     check(abs(imp[k, 0] - tk) < 1e-6 and abs(imp[k, 1] - vm) < 1e-4 and (vp is None or abs(imp[k, 2] - vp) < 1e-4),
@@ -102,9 +105,9 @@ release = re.search(r"t=([0-9.]+): joint H23 leaves its min stop", events)
 check(rest is not None and release is not None, "the impact sequence ends in a rest, later released")
 if rest and release:
     t_rest, t_acc, t_rel = float(rest.group(1)), float(rest.group(2)), float(release.group(1))
-    check(abs(t_rest - 6.4004873) < 1e-6 and 0 < t_acc - t_rest < 0.01,
+    check(abs(t_rest - 6.493708701) < 1e-6 and 0 < t_acc - t_rest < 0.01,
           f"rests at {t_rest} s (its bounces would have ended at {t_acc} s)")
-    check(7.4 < t_rel < 7.6, f"pulled off at {t_rel} s")
+    check(7.66 < t_rel < 7.86, f"pulled off at {t_rel} s")  # measured 7.762 s (gap-free 7.52 s, window 7.4-7.6)
     held = (t > t_rest + 1e-6) & (t < t_rel - 1e-6)
     check(held.sum() > 100 and np.all(state[held] == -1), f"resting on the stop over {held.sum()} output rows")
     # Held by the lock row: within 100 atol (1e-6 rad; measured 2.5e-7 on the sampled output).

@@ -88,6 +88,42 @@ TEST(BodyFile, InterfacesSitOnTheirProjectionsAndMoveRigidlyWithTheNode) {
   }
 }
 
+TEST(BodyFile, ABracketCarriesAPointBeyondTheEdgeRigidlyOnItsPanelNode) {
+  // A hinge pin 20 mm beyond the edge x = 1 and 0.0705 m off the mid-plane, carried by the node at the
+  // edge point (1, 0.65): u_P = u_n + theta_n x d, theta_P = theta_n with d = P - X_n (the same rigid
+  // offset as a point over the panel), and the node is exactly the bracket's panel point.
+  std::string yaml = kPanel;
+  yaml.replace(yaml.find("    inner:"), 0, "    pin: {point: [1.02, 0.65, -0.0705], bracket: [1.0, 0.65]}\n");
+  const FlexBody b = roundTrip(runYaml(yaml), "panel-bracket").body;
+  const FlexInterface& it = b.interface("pin");
+  const Eigen::Vector3d X = b.nodes.row(it.node).transpose();
+  EXPECT_LT((X - Eigen::Vector3d(1.0, 0.65, 0.0)).norm(), 1e-12);
+  EXPECT_LT((it.position - Eigen::Vector3d(1.02, 0.65, -0.0705)).norm(), 1e-15);
+  const Eigen::Vector3d d = it.position - X;
+  double rotation = 0;
+  for (int j = 0; j < b.modeCount(); ++j) {
+    const Eigen::Vector3d u = b.shapes.block<3, 1>(6 * it.node, j), th = b.shapes.block<3, 1>(6 * it.node + 3, j);
+    EXPECT_LT((it.shapes.block<1, 3>(j, 0).transpose() - (u + th.cross(d))).norm(), 1e-12 * (1 + u.norm())) << j;
+    EXPECT_LT((it.shapes.block<1, 3>(j, 3).transpose() - th).norm(), 1e-12 * (1 + th.norm())) << j;
+    rotation = std::max(rotation, th.norm());
+  }
+  EXPECT_GT(rotation, 1e-3);  // the offset matters: the corner node turns in these modes
+}
+
+TEST(BodyFile, APointOffThePanelWithoutABracketIsAnErrorNamingTheFix) {
+  std::string yaml = kPanel;
+  yaml.replace(yaml.find("    inner:"), 0, "    pin: [1.02, 0.65, -0.0705]\n");
+  try {
+    runYaml(yaml);
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a bracket"), std::string::npos) << e.what();
+  }
+  std::string outside = kPanel;
+  outside.replace(outside.find("    inner:"), 0, "    pin: {point: [1.02, 0.65, 0.0], bracket: [1.01, 0.65]}\n");
+  EXPECT_THROW(runYaml(outside), std::exception);
+}
+
 TEST(BodyFile, PinAtAnOffsetPointHoldsThePointNotTheNode) {
   // A pin 4 cm above the mid-surface: the point stays put in every mode while
   // its node moves (by -theta x d); with a clamped edge nothing rigid remains.
