@@ -12,7 +12,10 @@
 // are generated at run time in a scratch folder (removed afterwards), never
 // committed. Counters: dof, nnz (stored entries of K), CPU seconds and the
 // process's peak resident memory after the stage (sizes run in increasing
-// order, so each peak is that size's). docs/benchmarks.md holds the figures.
+// order, so each peak is that size's; run one size per process, e.g.
+// --benchmark_filter='BM_ImportSlab/407/1', for a size's own peak), and for
+// BM_ImportSlab MUMPS's own factor memory per stage (*_factor_MB, INFOG(21)).
+// docs/benchmarks.md holds the figures.
 //   bench_import [--benchmark_filter=BM_ImportRead]
 #include <benchmark/benchmark.h>
 #include <slepcsys.h>
@@ -207,6 +210,7 @@ void BM_ImportSlab(benchmark::State& state) {
   for (const auto& s : r.stages) {
     state.counters[s.stage + "_cpu_s"] = s.cpu_seconds;
     state.counters[s.stage + "_MB"] = s.peak_rss_mb;
+    if (s.factorisation_mb > 0) state.counters[s.stage + "_factor_MB"] = s.factorisation_mb;
   }
   state.counters["write_cpu_s"] = write_cpu;
   state.counters["write_MB"] = peakMb();

@@ -11,6 +11,8 @@
 # of M (PETSc's -mat_view ::ascii_info on the first two assembled matrices).
 #   bench/fe-prep/cb_memory.sh BUILD_DIR [DOF ...]    (default 1e4 3e4 1e5 3e5)
 #   REDUCTION=free bench/fe-prep/cb_memory.sh ...     the same mesh free-free, 20 modes
+#   LOG_DIR=DIR ...      keeps each run's fe-prep output (stage lines) as DIR/cb_DOF_REDUCTION.log
+#   PETSC_EXTRA="-mat_mumps_icntl_7 0" ...   more PETSc options for every run (MUMPS ordering etc.)
 # Run sizes one at a time on a shared machine; 1e6 DOF needs ~6 GB and ~10 min CPU.
 set -euo pipefail
 build=${1:?usage: cb_memory.sh BUILD_DIR [DOF ...]}
@@ -52,7 +54,8 @@ for dof in "${sizes[@]}"; do
       echo "  modes: 8"
     fi
   } > "$work/panel.yaml"
-  PETSC_OPTIONS="-mat_view ::ascii_info" /usr/bin/time -f "%U %S %M" -o "$work/time" "$feprep" -q "$work/panel.yaml" -o "$work/panel.h5" > "$work/out"
+  PETSC_OPTIONS="-mat_view ::ascii_info ${PETSC_EXTRA:-}" /usr/bin/time -f "%U %S %M" -o "$work/time" "$feprep" -q "$work/panel.yaml" -o "$work/panel.h5" > "$work/out"
+  [ -n "${LOG_DIR:-}" ] && cp "$work/out" "$LOG_DIR/cb_${dof}_${reduction}.log"
   awk -v target="$dof" -v red="$reduction" -v timefile="$work/time" '
     BEGIN { getline t < timefile; split(t, a, " "); cpu = a[1] + a[2]; whole = a[3] / 1024 }
     / DOF, / { for (i = 1; i <= NF; ++i) if ($i == "DOF,") n = $(i - 1) }
