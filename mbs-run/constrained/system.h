@@ -168,6 +168,9 @@ class System {
   void stateDerivative(const Eigen::VectorXd& y, const Eigen::VectorXd& vdot, double dissipation,
                        double applied_power, double stiffening_power, Eigen::VectorXd& ydot) const;
   void factorize();
+  // modalSplit's force elements (StiffModalPart::element_*), at the poses
+  // P_ with the mass and constraints factorised.
+  void addForceElementSplit(StiffModalPart& S);
   double penalty() const;
   // Newton passes on the positions (project(), assemble()): frames_only
   // holds the modal coordinates; damped (the assembly's) takes each pass's

@@ -203,9 +203,18 @@ class ImexArk final : public Integrator {
  private:
   void renewSplit() {
     S_ = stiff_(t_, y_);
-    const int nm = S_.modes();
-    Pm_.resize(nm, nm);
-    for (int j = 0; j < nm; ++j) Pm_.row(j) = S_.response.row(S_.v_index[j] - S_.v_offset);
+    const int nm = S_.modes(), ne = S_.elements();
+    // The rows of the stage system: the modal rates a, then the elements'
+    // rates s_e = g_e^T z_v; its columns: the modal and element forces.
+    Pm_.resize(nm + ne, nm + ne);
+    for (int j = 0; j < nm; ++j) {
+      Pm_.row(j).head(nm) = S_.response.row(S_.v_index[j] - S_.v_offset);
+      if (ne) Pm_.row(j).tail(ne) = S_.element_response.row(S_.v_index[j] - S_.v_offset);
+    }
+    if (ne) {
+      Pm_.bottomLeftCorner(ne, nm) = S_.element_gradient.transpose() * S_.response;
+      Pm_.bottomRightCorner(ne, ne) = S_.element_gradient.transpose() * S_.element_response;
+    }
     split_age_ = 0;
     h_lu_ = -1.0;
   }
@@ -213,47 +222,81 @@ class ImexArk final : public Integrator {
   // L z (see StiffModalPart).
   VectorXd applyL(const VectorXd& z) const {
     VectorXd out = VectorXd::Zero(z.size());
-    const int nm = S_.modes();
+    const int nm = S_.modes(), ne = S_.elements();
     if (nm == 0) return out;
-    VectorXd force(nm);
+    VectorXd force(nm), zq(nm);
     for (int j = 0; j < nm; ++j) {
       out[S_.q_index[j]] = z[S_.v_index[j]];
-      force[j] = S_.stiffness[j] * z[S_.q_index[j]] + S_.damping[j] * z[S_.v_index[j]];
+      zq[j] = z[S_.q_index[j]];
+      force[j] = S_.stiffness[j] * zq[j] + S_.damping[j] * z[S_.v_index[j]];
     }
-    out.segment(S_.v_offset, S_.response.rows()) -= S_.response * force;
+    auto v = out.segment(S_.v_offset, S_.response.rows());
+    v -= S_.response * force;
+    if (ne) {
+      const VectorXd fe =
+          S_.element_damping.cwiseProduct(S_.element_gradient.transpose() * z.segment(S_.v_offset, v.size())) +
+          S_.element_stiffness.cwiseProduct(S_.element_modal_gradient.transpose() * zq);
+      v -= S_.element_response * fe;
+    }
     return out;
   }
 
-  // (I - gamma h L) = I + P_m G on the modal rates a, G = gamma h (gamma h
-  // Lambda + D): see solve().
+  // (I - gamma h L) = I + gamma h P H on x = [a; s] (the modal rates and
+  // the elements' rates), H the forces' dependence on x: see solve(). With
+  // no elements, gamma h H = G = gamma h (gamma h Lambda + D), diagonal.
   void factorize(double h) {
-    const int nm = S_.modes();
+    const int nm = S_.modes(), ne = S_.elements();
     gh_ = T_.gamma * h;
     if (nm > 0) {
       G_ = gh_ * (gh_ * S_.stiffness + S_.damping);
-      MatrixXd A = Pm_ * G_.asDiagonal();
+      MatrixXd A(nm + ne, nm + ne);
+      A.leftCols(nm) = Pm_.leftCols(nm) * G_.asDiagonal();
+      if (ne) {
+        // Element force rows of gamma h H: gamma h (gamma h k_e g_qe^T a + c_e s_e).
+        Ge_.resize(ne, nm);
+        Ge_ = gh_ * gh_ * S_.element_stiffness.asDiagonal() * S_.element_modal_gradient.transpose();
+        A.leftCols(nm) += Pm_.rightCols(ne) * Ge_;
+        A.rightCols(ne) = Pm_.rightCols(ne) * (gh_ * S_.element_damping).asDiagonal();
+      }
       A.diagonal().array() += 1.0;
       lu_.compute(A);
     }
     h_lu_ = h;
   }
 
-  // z = (I - gamma h L)^-1 r. With a the modal rates of z:
+  // z = (I - gamma h L)^-1 r. With a the modal rates of z and s the
+  // elements' rates g_e^T z_v:
   //   z[q_j] = r[q_j] + gamma h a_j,
-  //   z_v    = r_v - P (gamma h Lambda r_q + G a),
-  // whose modal rows give (I + P_m G) a = r_vm - gamma h P_m Lambda r_q.
+  //   z_v    = r_v - gamma h (P F_m + R F_e),
+  //   F_m = Lambda z_q + D a,  F_e = k (g_q^T z_q) + c s,
+  // whose modal and element rows give
+  //   (I + gamma h P_x H) x = [r_vm; g^T r_v] - gamma h P_x F0,
+  // F0 the forces at a = s = 0 (Lambda r_q, k g_q^T r_q).
   VectorXd solve(const VectorXd& r) const {
-    const int nm = S_.modes();
+    const int nm = S_.modes(), ne = S_.elements();
     if (nm == 0) return r;
-    VectorXd rq(nm), rvm(nm);
+    VectorXd rq(nm), rx(nm + ne);
     for (int j = 0; j < nm; ++j) {
       rq[j] = r[S_.q_index[j]];
-      rvm[j] = r[S_.v_index[j]];
+      rx[j] = r[S_.v_index[j]];
     }
     const VectorXd lr = gh_ * S_.stiffness.cwiseProduct(rq);
-    const VectorXd a = lu_.solve(rvm - Pm_ * lr);
+    VectorXd a, ue;  // ue: gamma h F_e
     VectorXd z = r;
-    z.segment(S_.v_offset, S_.response.rows()) -= S_.response * (lr + G_.cwiseProduct(a));
+    auto zv = z.segment(S_.v_offset, S_.response.rows());
+    if (ne == 0) {
+      a = lu_.solve(rx - Pm_ * lr);
+    } else {
+      rx.tail(ne) = S_.element_gradient.transpose() * r.segment(S_.v_offset, S_.response.rows());
+      VectorXd uf0(nm + ne);
+      uf0.head(nm) = lr;
+      uf0.tail(ne) = gh_ * S_.element_stiffness.cwiseProduct(S_.element_modal_gradient.transpose() * rq);
+      const VectorXd x = lu_.solve(rx - Pm_ * uf0);
+      a = x.head(nm);
+      ue = uf0.tail(ne) + Ge_ * a + gh_ * S_.element_damping.cwiseProduct(x.tail(ne));
+      zv -= S_.element_response * ue;
+    }
+    zv -= S_.response * (lr + G_.cwiseProduct(a));
     for (int j = 0; j < nm; ++j) {
       z[S_.q_index[j]] = rq[j] + gh_ * a[j];
       z[S_.v_index[j]] = a[j];
@@ -270,6 +313,7 @@ class ImexArk final : public Integrator {
   StiffModalPart S_;
   MatrixXd Pm_;
   VectorXd G_;
+  MatrixXd Ge_;
   Eigen::PartialPivLU<MatrixXd> lu_;
   double gh_ = 0.0, h_lu_ = -1.0;
   int split_age_ = kSplitAge;

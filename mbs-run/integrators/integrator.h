@@ -129,22 +129,39 @@ std::unique_ptr<Integrator> makeTrBdf2(Rhs f, const Tolerances& tol);
 // (System::modalSplit): for each modal coordinate j, at state index q_j with
 // its rate at v_j, (L z)[q_j] = z[v_j] and the velocity rows
 // [v_offset, v_offset + response.rows()) receive
-//   -sum_j response(:, j) (stiffness_j z[q_j] + damping_j z[v_j]).
+//   -sum_j response(:, j) (stiffness_j z[q_j] + damping_j z[v_j])
+//   -sum_e element_response(:, e) (element_damping_e g_e^T z_v
+//                                  + element_stiffness_e element_modal_gradient(:, e)^T z_q),
+// the second sum over the linear force elements that act through modal
+// coordinates (a rotary damper at a flexible interface): each applies
+// -(k s + c s_dot) g_e along its coordinate s, s_dot = g_e^T v, and
+// element_response(:, e) is the accelerations a unit generalised force g_e
+// causes. Its damping is rank one over all the velocities it touches, frames
+// and modes alike: the modal block c g_f g_f^T alone would leave the
+// frame-mode coupling c g_r g_f^T explicit, with eigenvalues +-c sqrt(a b)
+// (a, b the frame and modal shares of g^T M^-1 g), still stiff.
 struct StiffModalPart {
   std::vector<int> q_index, v_index;
   int v_offset = 0;
   Eigen::VectorXd stiffness, damping;
   Eigen::MatrixXd response;
+  Eigen::MatrixXd element_gradient;         // g_e over the velocity rows (response.rows() x ne)
+  Eigen::MatrixXd element_modal_gradient;   // its modal entries in q_index order (modes() x ne)
+  Eigen::MatrixXd element_response;         // (response.rows() x ne)
+  Eigen::VectorXd element_stiffness, element_damping;  // k_e, c_e
   int modes() const { return int(q_index.size()); }
+  int elements() const { return int(element_damping.size()); }
 };
 using StiffPart = std::function<StiffModalPart(double, const Eigen::VectorXd&)>;
 
 // IMEX additive Runge-Kutta ARK3(2)4L[2]SA (Kennedy & Carpenter, Appl.
 // Numer. Math. 44 (2003) 139-181): f = (f - L) + L with L the modal
-// stiffness and damping (StiffModalPart), L treated by the L-stable ESDIRK,
+// stiffness and damping and the linear force elements acting through them
+// (StiffModalPart), L treated by the L-stable ESDIRK,
 // the rest by the explicit tableau; order 3, embedded order 2. L is frozen
 // over a step (and reused over many), so every stage is one structured
-// linear solve (an nm x nm system, nm the modes) and the split stays exact:
+// linear solve (an (nm + ne) x (nm + ne) system, nm the modes, ne the
+// force elements) and the split stays exact:
 // accuracy never depends on how well L matches the Jacobian, only stability.
 std::unique_ptr<Integrator> makeImexArk3(Rhs f, StiffPart stiff, const Tolerances& tol);
 // The same split with Kennedy & Carpenter's ARK4(3)6L[2]SA (gamma = 1/4):

@@ -229,6 +229,40 @@ void interfaceForces(const Model& model, const ForceElement& fe, const std::vect
   }
 }
 
+namespace {
+// dF/dx of the piecewise-linear law at x: the slope of its segment, 0 beyond
+// the ends (constant there).
+double slope(const PiecewiseLinear& f, double at) {
+  if (f.x.size() < 2 || at <= f.x.front() || at >= f.x.back()) return 0.0;
+  std::size_t k = 1;
+  while (f.x[k] < at) ++k;
+  return (f.y[k] - f.y[k - 1]) / (f.x[k] - f.x[k - 1]);
+}
+}  // namespace
+
+bool linearForce(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                 const std::vector<JointRuntime>& joints, LinearForce& out) {
+  if (fe.type == ForceType::RotationalSpringDamper) {
+    const Joint& jt = model.joints[fe.joint];
+    const BodyPose &bi = P[jt.body_i], &bj = P[jt.body_j];
+    revoluteAngleJacobian(jt, bi, bj, out.grad_i, out.grad_j);
+    out.stiffness = slope(fe.torque, revoluteAngle(jt, joints[fe.joint], bi, bj));
+    out.damping = fe.damping;
+    return true;
+  }
+  if (fe.type == ForceType::TranslationalSpringDamper) {
+    const SpringState sp = springState(P, fe);
+    if (sp.L <= 0.0) return false;
+    // s_dot = e . (xdot_j - xdot_i), xdot = J v at each point.
+    out.grad_i = -sp.e.transpose() * attachedPoint(P[fe.body_i], fe.point_i, fe.shapes_i.psi).J;
+    out.grad_j = sp.e.transpose() * attachedPoint(P[fe.body_j], fe.point_j, fe.shapes_j.psi).J;
+    out.stiffness = fe.stiffness;
+    out.damping = fe.damping;
+    return true;
+  }
+  return false;
+}
+
 std::string forceElementLabel(const Model& model, int index) {
   const ForceElement& fe = model.forces[index];
   const char* type = "";

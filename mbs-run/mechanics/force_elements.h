@@ -79,6 +79,25 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
 // penetration the element never acts on.
 double reportedPenetration(const ContactState& cs);
 
+// The linear part of a force element along its own coordinate s (a
+// revolute angle, a spring's length): the element applies
+// Q = -F(s, s_dot) [grad_i, grad_j]^T with s_dot = grad_i v_i + grad_j v_j,
+// and dF/ds = stiffness, dF/ds_dot = damping at poses P, so its stiffness and
+// damping on the velocity coordinates are stiffness g g^T (the part through
+// s only; the curvature of s is left out) and damping g g^T. A damper acting
+// at a flexible body's interface puts damping g_f g_f^T on that body's modal
+// rates, g_f the modal tail of its gradient: as stiff as the modes it damps
+// (System::modalSplit hands it to the IMEX integrator's implicit part).
+// False, and nothing set, for elements without such a coordinate (gravity,
+// constant loads) or when the element is inactive (a contact not touching,
+// a spring at zero length).
+struct LinearForce {
+  double stiffness = 0.0, damping = 0.0;
+  Eigen::RowVectorXd grad_i, grad_j;
+};
+bool linearForce(const Model& model, const ForceElement& fe, const std::vector<BodyPose>& P,
+                 const std::vector<JointRuntime>& joints, LinearForce& out);
+
 // "NAME (type)", or "#k (type)" for an unnamed element, for messages.
 std::string forceElementLabel(const Model& model, int index);
 
