@@ -48,7 +48,10 @@ SparseModalProducts sparseModalProducts(const InertiaInvariants& inv) {
 }
 
 bool sparseFormCheaper(const SparseModalProducts& s) {
-  return s.n_modes > 0 && 2 * s.entries() < 6L * s.n_modes * s.n_modes;
+  // Below 16 modes the six S_ab are a few kB, in cache, and the dense loop
+  // costs next to nothing (as for the node form, nodalFormCheaper): such
+  // bodies keep the dense products and their results bit for bit.
+  return s.n_modes >= 16 && 2 * s.entries() < 6L * s.n_modes * s.n_modes;
 }
 
 void sparseTransposedAndDirect(const SparseProduct& S, const Eigen::VectorXd& x, Eigen::VectorXd& St_x,
