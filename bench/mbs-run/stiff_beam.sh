@@ -52,7 +52,7 @@ EOT
       if [ "$status" = completed ] || [ "$status" = inaccurate ]; then
         rows=$(h5ls "$OUT/run.h5/time" | sed -n 's/.*{\([0-9]*\).*/\1/p')
         pos=$(h5dump -d /bodies/bar/position -s "$((rows - 1)),0" -c "1,3" -m "%.9f" "$OUT/run.h5" |
-              sed -n 's/^ *([0-9]*,0): //p' | tr -d ' ')
+              sed -n 's/^ *([0-9]*,0): //p' | tr -d ' ,')
       fi
       echo "| $m | $fmax | $integ | $rtol | ${cpu:-> $LIMIT} | ${counts:-| | |} | $rss | ${status:-stopped} | $pos |"
     done

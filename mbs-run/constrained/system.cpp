@@ -220,7 +220,7 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
       // the constant modal block, diagonal or factorised once), O(modes) to
       // assemble.
       FlexibleInertiaRows fi = flexibleInertiaRows(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w,
-                                                   b.flex->nodal.get());
+                                                   b.flex->secondOrder());
       Mb.swap(fi.top);
       Db = modal_mass_[k];
       Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
@@ -228,7 +228,7 @@ void System::assembleMass(const std::vector<BodyPose>& P) {
       // Floating frame of reference: inertia from the body file's invariants
       // (mbs-run/mechanics/flexible, shared conventions of the flexible-body kernel).
       const FlexibleInertia fi =
-          flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w, b.flex->nodal.get());
+          flexibleInertia(b.flex->inertia, P[k].A, P[k].modal, P[k].modal_rate, P[k].w, b.flex->secondOrder());
       Mb = fi.M;
       Db.resize(0);
       Qv_.segment(b.dof_index, b.nv()) = fi.Qv;
@@ -540,7 +540,7 @@ std::string System::nonFiniteCause(double t, const VectorXd& y) {
     if (b.fixed) continue;
     const BodyPose& P = P_[k];
     if (b.flex) {
-      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P.A, P.modal, P.modal_rate, P.w, b.flex->nodal.get());
+      const FlexibleInertia fi = flexibleInertia(b.flex->inertia, P.A, P.modal, P.modal_rate, P.w, b.flex->secondOrder());
       if (!finite(fi.M) || !finite(fi.Qv)) return "the inertia of flexible body " + b.name + " (its body file)";
       if (b.modes > 0 && !finite(elasticForces(b.flex->modal, P.modal, P.modal_rate)))
         return "the modal stiffness of flexible body " + b.name + " (its body file)";
@@ -730,7 +730,7 @@ Energies System::energies(double t, const VectorXd& y) const {
     if (b.flex) {
       Eigen::VectorXd v(b.nv());
       v << P[k].rdot, P[k].w, P[k].modal_rate;
-      e.kinetic += kineticEnergy(b.flex->inertia, P[k].A, P[k].modal, v, b.flex->nodal.get());
+      e.kinetic += kineticEnergy(b.flex->inertia, P[k].A, P[k].modal, v, b.flex->secondOrder());
       e.strain += strainEnergy(b.flex->modal, P[k].modal);
     } else {
       e.kinetic += rigidKineticEnergy(b.mass, b.com, b.inertia_com, P[k].A, P[k].rdot, P[k].w);
@@ -761,7 +761,7 @@ EnergySensitivity System::energySensitivity(double t, const VectorXd& y) const {
     if (b.fixed) continue;
     VectorXd v(b.nv());
     v << P[k].rdot, P[k].w, P[k].modal_rate;
-    const VectorXd p = b.flex ? VectorXd(flexibleMassMatrix(b.flex->inertia, P[k].A, P[k].modal, b.flex->nodal.get()) * v)
+    const VectorXd p = b.flex ? VectorXd(flexibleMassMatrix(b.flex->inertia, P[k].A, P[k].modal, b.flex->secondOrder()) * v)
                               : VectorXd(rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A) * v);
     for (int i = 0; i < b.nv(); ++i) add(p[i], v[i]);
     const VectorXd Q = sums.Q.segment(b.dof_index, b.nv());

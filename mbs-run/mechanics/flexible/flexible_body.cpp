@@ -72,6 +72,10 @@ FlexibleBodyData loadFlexibleBody(const std::string& file, int modes, double dam
     auto nodal = std::make_shared<NodalInertia>(nodalInertia(all.body, b.modes));
     if (nodalFormCheaper(nodal->rows(), b.modes)) b.nodal = std::move(nodal);
   }
+  if (!b.nodal && b.modes > 0) {
+    auto sparse = std::make_shared<SparseModalProducts>(sparseModalProducts(b.inertia));
+    if (sparseFormCheaper(*sparse)) b.sparse = std::move(sparse);
+  }
   return b;
 }
 

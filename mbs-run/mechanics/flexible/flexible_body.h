@@ -13,6 +13,7 @@
 
 #include "common/flexbody.h"
 #include "common/input.h"
+#include "mbs-run/mechanics/flexible/flexible_inertia.h"
 #include "mbs-run/mechanics/flexible/geometric_stiffening.h"
 #include "mbs-run/mechanics/flexible/marker.h"
 #include "mbs-run/mechanics/flexible/modal.h"
@@ -29,6 +30,11 @@ struct FlexibleBodyData {
   // one for this body's nodes and modes (nodal_inertia.h), decided at load
   // time; null: the invariants' nm x nm products.
   std::shared_ptr<const NodalInertia> nodal;
+  // Otherwise the invariants' S_ab over their non-zero entries when that is
+  // cheaper (modal_products.h); null: the dense S_ab.
+  std::shared_ptr<const SparseModalProducts> sparse;
+  // The form the inertia kernels are given (flexible_inertia.h).
+  SecondOrderForm secondOrder() const { return {nodal.get(), sparse.get()}; }
   ModalProperties modal;
   Eigen::VectorXd frequencies_hz;
   std::vector<FlexInterface> interfaces;  // shapes restricted to the first `modes` modes

@@ -32,9 +32,10 @@ struct Deformed {
   Eigen::VectorXd coriolis;
 };
 
-// nodal: the node form of the second-order terms (nodal_inertia.h), null for
-// the invariants' S_ab; wdot (with nodal) also gives the Coriolis rows.
-Deformed deformed(const InertiaInvariants& inv, const NodalInertia* nodal, const Eigen::VectorXd& w,
+// form: the node form of the second-order terms (nodal_inertia.h), the
+// sparse S_ab or the dense ones; wdot (with the node form) also gives the
+// Coriolis rows.
+Deformed deformed(const InertiaInvariants& inv, const SecondOrderForm& form, const Eigen::VectorXd& w,
                   const Eigen::VectorXd* wdot = nullptr, const Eigen::Vector3d& omega = Eigen::Vector3d::Zero()) {
   const int nm = inv.n_modes;
   if (w.size() != nm)
@@ -46,7 +47,7 @@ Deformed deformed(const InertiaInvariants& inv, const NodalInertia* nodal, const
   d.B = inv.modal_second_moment;
   if (nm == 0) return d;
   const Eigen::VectorXd cw = inv.modal_second_moment * w;  // (9): C_ab . w
-  if (nodal) {
+  if (const NodalInertia* nodal = form.nodal) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) d.E(a, b) += cw(3 * a + b) + cw(3 * b + a);
     if (wdot) d.coriolis = Eigen::VectorXd::Zero(nm);
@@ -59,7 +60,8 @@ Deformed deformed(const InertiaInvariants& inv, const NodalInertia* nodal, const
   Eigen::VectorXd wS_ab(nm), wS_ba(nm);
   for (int a = 0; a < 3; ++a)
     for (int b = a; b < 3; ++b) {
-      transposedAndDirectProducts(inv.modal_products[3 * a + b], w, wS_ab, wS_ba);
+      if (form.sparse) sparseTransposedAndDirect(form.sparse->products[3 * a + b], w, wS_ab, wS_ba);
+      else transposedAndDirectProducts(inv.modal_products[3 * a + b], w, wS_ab, wS_ba);
       d.B.row(3 * a + b) += wS_ab.transpose();
       const double q = wS_ab.dot(w);
       d.E(a, b) += cw(3 * a + b) + cw(3 * b + a) + q;
@@ -113,7 +115,8 @@ Eigen::MatrixXd massMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& 
 
 // Q_v from the deformed sums (see the header).
 Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Matrix3d& A, const Deformed& d,
-                                  const Eigen::VectorXd& wdot, const Eigen::Vector3d& omega) {
+                                  const Eigen::VectorXd& wdot, const Eigen::Vector3d& omega,
+                                  const SparseModalProducts* sparse) {
   const int nm = inv.n_modes;
   if (wdot.size() != nm)
     throw std::invalid_argument("flexible body: " + std::to_string(wdot.size()) +
@@ -144,7 +147,8 @@ Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Mat
     else for (int a = 0; a < 3; ++a)
       for (int b = a + 1; b < 3; ++b) {
         if (Wt(a, b) == 0.0) continue;
-        transposedAndDirectProducts(inv.modal_products[3 * a + b], wdot, St_wd, S_wd);
+        if (sparse) sparseTransposedAndDirect(sparse->products[3 * a + b], wdot, St_wd, S_wd);
+        else transposedAndDirectProducts(inv.modal_products[3 * a + b], wdot, St_wd, S_wd);
         qf += 2.0 * Wt(a, b) * (S_wd - St_wd);
       }
     Qv.tail(nm) = -qf;
@@ -155,33 +159,33 @@ Eigen::VectorXd quadraticVelocity(const InertiaInvariants& inv, const Eigen::Mat
 }  // namespace
 
 Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                                   const Eigen::VectorXd& w, const NodalInertia* nodal) {
-  return massMatrix(inv, A, deformed(inv, nodal, w));
+                                   const Eigen::VectorXd& w, SecondOrderForm form) {
+  return massMatrix(inv, A, deformed(inv, form, w));
 }
 
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                const Eigen::Vector3d& omega, const NodalInertia* nodal) {
-  const Deformed d = deformed(inv, nodal, w, &wdot, omega);
+                                const Eigen::Vector3d& omega, SecondOrderForm form) {
+  const Deformed d = deformed(inv, form, w, &wdot, omega);
   FlexibleInertia out;
-  out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
+  out.Qv = quadraticVelocity(inv, A, d, wdot, omega, form.sparse);
   out.M = massMatrix(inv, A, d);
   return out;
 }
 
 FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                         const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                        const Eigen::Vector3d& omega, const NodalInertia* nodal) {
-  const Deformed d = deformed(inv, nodal, w, &wdot, omega);
+                                        const Eigen::Vector3d& omega, SecondOrderForm form) {
+  const Deformed d = deformed(inv, form, w, &wdot, omega);
   FlexibleInertiaRows out;
-  out.Qv = quadraticVelocity(inv, A, d, wdot, omega);
+  out.Qv = quadraticVelocity(inv, A, d, wdot, omega, form.sparse);
   out.top = topRows(inv, A, d);
   return out;
 }
 
 double kineticEnergy(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                     const Eigen::VectorXd& w, const Eigen::VectorXd& v, const NodalInertia* nodal) {
-  return 0.5 * v.dot(flexibleMassMatrix(inv, A, w, nodal) * v);
+                     const Eigen::VectorXd& w, const Eigen::VectorXd& v, SecondOrderForm form) {
+  return 0.5 * v.dot(flexibleMassMatrix(inv, A, w, form) * v);
 }
 
 Eigen::Vector3d linearMomentum(const InertiaInvariants& inv, const Eigen::Matrix3d& A,

@@ -20,11 +20,27 @@
 // are M vdot = Q_ext + Q_v - [0; 0; Lambda w + D wdot]. With nm = 0 these are
 // exactly the rigid body's M and Q_v (origin off the centre of mass allowed).
 #include <Eigen/Dense>
+#include <cstddef>
 
 #include "common/flexbody.h"
+#include "mbs-run/mechanics/flexible/modal_products.h"
 #include "mbs-run/mechanics/flexible/nodal_inertia.h"
 
 namespace fc::mbs {
+
+// How the second-order terms in w are evaluated, chosen once at load
+// (FlexibleBodyData::secondOrder()): the node form (nodal_inertia.h), the
+// invariants' S_ab over their non-zero entries (modal_products.h), or, with
+// neither, the dense S_ab. All three give the same values to rounding.
+struct SecondOrderForm {
+  const NodalInertia* nodal = nullptr;
+  const SparseModalProducts* sparse = nullptr;
+  SecondOrderForm() = default;
+  SecondOrderForm(std::nullptr_t) {}                               // NOLINT: the dense S_ab
+  SecondOrderForm(const NodalInertia* n) : nodal(n) {}             // NOLINT: as the node form was passed
+  SecondOrderForm(const SparseModalProducts* s) : sparse(s) {}     // NOLINT
+  SecondOrderForm(const NodalInertia* n, const SparseModalProducts* s) : nodal(n), sparse(s) {}
+};
 
 struct FlexibleInertia {
   Eigen::MatrixXd M;   // (6+nm, 6+nm), symmetric positive definite
@@ -34,10 +50,10 @@ struct FlexibleInertia {
 // A: body->global rotation; w, wdot: modal coordinates and rates; omega: omega'.
 FlexibleInertia flexibleInertia(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                 const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                const Eigen::Vector3d& omega, const NodalInertia* nodal = nullptr);
-// nodal (every function here): the node form of the second-order terms, the
-// same values to rounding at O(r nm) instead of O(nm^2) (nodal_inertia.h);
-// null: the invariants' S_ab.
+                                const Eigen::Vector3d& omega, SecondOrderForm form = {});
+// form (every function here): the node form of the second-order terms, the
+// same values to rounding at O(r nm) instead of O(nm^2) (nodal_inertia.h), or
+// the S_ab over their pattern (modal_products.h); empty: the dense S_ab.
 // The same without the constant modal block: the first six rows of M, whose
 // last nm columns are the coupling C = [M_rf; M_tf] (M = [top; C^T M_ff]).
 // O(nm) storage, for the solvers that use the structure of M (a diagonal
@@ -48,15 +64,15 @@ struct FlexibleInertiaRows {
 };
 FlexibleInertiaRows flexibleInertiaRows(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                                         const Eigen::VectorXd& w, const Eigen::VectorXd& wdot,
-                                        const Eigen::Vector3d& omega, const NodalInertia* nodal = nullptr);
+                                        const Eigen::Vector3d& omega, SecondOrderForm form = {});
 // Only the mass matrix (what an implicit integrator's iteration matrix needs).
 Eigen::MatrixXd flexibleMassMatrix(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
-                                   const Eigen::VectorXd& w, const NodalInertia* nodal = nullptr);
+                                   const Eigen::VectorXd& w, SecondOrderForm form = {});
 
 // T = 1/2 v^T M(w) v for v = [rdot, omega', wdot].
 double kineticEnergy(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
                      const Eigen::VectorXd& w, const Eigen::VectorXd& v,
-                     const NodalInertia* nodal = nullptr);
+                     SecondOrderForm form = {});
 // Global linear momentum dT/drdot, and angular momentum about the global origin
 // r x L + A dT/domega' (dT/domega' is the body-axes momentum about the body origin).
 Eigen::Vector3d linearMomentum(const InertiaInvariants& inv, const Eigen::Matrix3d& A,
