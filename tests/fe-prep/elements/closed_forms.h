@@ -22,6 +22,19 @@ std::vector<double> lowestNavier(bool mindlin, const Eigen::Matrix3d& D,
                                  const Eigen::Matrix2d& As, double I0, double I2, double a,
                                  double b, int count);
 
+// Classical (Kirchhoff) rectangular plate [0,a] x [0,b] with a general D,
+// bending-twist terms D16 and D26 included, clamped on all four edges: the Ritz
+// method of Reddy 2004, ch. 5 (anisotropic plates, no Navier solution), with
+// the trial functions w = (1 - xi^2)^2 (1 - eta^2)^2 P_i(xi) P_j(eta), P the
+// Legendre polynomials of degree 0..p on xi, eta in [-1, 1]. The basis is
+// complete and satisfies w = w_,n = 0 on every edge, so the frequencies fall
+// monotonically and fast with p (p = 12 and 16 agree to 1e-5 for the first six
+// modes of a single 45-degree ply). Energies by Gauss-Legendre quadrature,
+// exact for the polynomial integrands. Rotary inertia neglected (thin plate).
+// The lowest `count` angular frequencies, ascending.
+std::vector<double> ritzClampedPlateOmegas(const Eigen::Matrix3d& D, double I0, double a,
+                                           double b, int p, int count);
+
 // Cantilever Euler-Bernoulli roots beta_n L of 1 + cos(bL) cosh(bL) = 0, solved
 // by Newton from the asymptotic (2n-1) pi/2.
 double cantileverRoot(int n);

@@ -30,13 +30,13 @@ PlateMesh rectangleMesh(double a, double b, int nx, int ny) {
 }
 
 Assembled assembleShell(const PlateMesh& mesh, const LaminateStiffness& lam, ShellKind kind,
-                        bool lumped, double drilling) {
+                        bool lumped, double drilling, const Eigen::Vector3d& material_x) {
   const int n = 6 * static_cast<int>(mesh.nodes.size());
   Assembled s{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
   for (const auto& t : mesh.triangles) {
     Eigen::Matrix3d xyz;
     for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes[t[i]].transpose();
-    const ShellMatrices e = shellTriangle(xyz, lam, kind, Eigen::Vector3d::UnitX(), drilling);
+    const ShellMatrices e = shellTriangle(xyz, lam, kind, material_x, drilling);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         s.K.block<6, 6>(6 * t[i], 6 * t[j]) += e.K.block<6, 6>(6 * i, 6 * j);
@@ -75,6 +75,8 @@ std::vector<int> plateBendingDofs(const PlateMesh& mesh, char support) {
         // the edge); on y = const beta_x = theta_y = 0.
         if (xedge) tx = false;
         if (yedge) ty = false;
+      } else if (support == 'A') {
+        if (i == 0 || i == mesh.nx || j == 0 || j == mesh.ny) w = tx = ty = false;
       } else if (support == 'C') {
         if (i == 0) w = tx = ty = false;
       } else {
@@ -86,6 +88,53 @@ std::vector<int> plateBendingDofs(const PlateMesh& mesh, char support) {
     }
   }
   return keep;
+}
+
+std::vector<double> lowestOmegasSparse(const PlateMesh& mesh, const LaminateStiffness& lam,
+                                       ShellKind kind, const std::vector<int>& keep, int count) {
+  const int n = 6 * static_cast<int>(mesh.nodes.size()), m = static_cast<int>(keep.size());
+  std::vector<int> reduced(static_cast<std::size_t>(n), -1);
+  for (int k = 0; k < m; ++k) reduced[static_cast<std::size_t>(keep[static_cast<std::size_t>(k)])] = k;
+  std::vector<Eigen::Triplet<double>> kt, mt;
+  for (const auto& t : mesh.triangles) {
+    Eigen::Matrix3d xyz;
+    for (int i = 0; i < 3; ++i) xyz.row(i) = mesh.nodes[t[i]].transpose();
+    const ShellMatrices e = shellTriangle(xyz, lam, kind, Eigen::Vector3d::UnitX());
+    for (int r = 0; r < 18; ++r)
+      for (int c = 0; c < 18; ++c) {
+        const int R = reduced[static_cast<std::size_t>(6 * t[r / 6] + r % 6)],
+                  C = reduced[static_cast<std::size_t>(6 * t[c / 6] + c % 6)];
+        if (R < 0 || C < 0) continue;
+        kt.emplace_back(R, C, e.K(r, c));
+        mt.emplace_back(R, C, e.M(r, c));
+      }
+  }
+  Eigen::SparseMatrix<double> K(m, m), M(m, m);
+  K.setFromTriplets(kt.begin(), kt.end());
+  M.setFromTriplets(mt.begin(), mt.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(K);
+  if (ldlt.info() != Eigen::Success) throw std::runtime_error("sparse K not factorised");
+  const int block = 2 * count + 4;
+  Eigen::MatrixXd X = Eigen::MatrixXd::Ones(m, block);
+  for (int c = 0; c < block; ++c)
+    for (int r = 0; r < m; ++r) X(r, c) = std::sin(0.7 * (r + 1) * (c + 1) + 0.3 * c);
+  Eigen::VectorXd previous = Eigen::VectorXd::Zero(block);
+  for (int it = 0; it < 500; ++it) {
+    const Eigen::MatrixXd Y = ldlt.solve(M * X);
+    const Eigen::MatrixXd Ks = Y.transpose() * (K * Y), Ms = Y.transpose() * (M * Y);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Ms);
+    X = Y * es.eigenvectors();
+    const Eigen::VectorXd lam_now = es.eigenvalues();
+    const double change =
+        ((lam_now.head(count) - previous.head(count)).array().abs() / lam_now.head(count).array()).maxCoeff();
+    previous = lam_now;
+    if (it > 3 && change < 1e-12) {
+      std::vector<double> w;
+      for (int i = 0; i < count; ++i) w.push_back(std::sqrt(lam_now(i)));
+      return w;
+    }
+  }
+  throw std::runtime_error("subspace iteration did not converge");
 }
 
 }  // namespace fc::fe::test

@@ -4,6 +4,7 @@
 // conditions by DOF elimination, and the generalized eigenproblem.
 #include <Eigen/Dense>
 #include <array>
+#include <Eigen/Sparse>
 #include <vector>
 
 #include "fe-prep/elements/shell_triangle.h"
@@ -26,7 +27,15 @@ struct Assembled {
   Eigen::MatrixXd K, M;  // 6 DOF per node, body frame
 };
 Assembled assembleShell(const PlateMesh& mesh, const LaminateStiffness& lam, ShellKind kind,
-                        bool lumped, double drilling = 1e-4);
+                        bool lumped, double drilling = 1e-4,
+                        const Eigen::Vector3d& material_x = Eigen::Vector3d::UnitX());
+
+// The same plate assembled sparse (consistent mass) for meshes too large for
+// the dense solver: the lowest `count` angular frequencies on the DOF `keep`,
+// by subspace iteration on K^-1 M (block of 2 count + 4 vectors, Rayleigh-Ritz
+// each step) until the eigenvalues settle to 1e-12 relative.
+std::vector<double> lowestOmegasSparse(const PlateMesh& mesh, const LaminateStiffness& lam,
+                                       ShellKind kind, const std::vector<int>& keep, int count);
 
 // Sorted generalized eigenvalues of (K, M) restricted to the DOF in `keep`.
 Eigen::VectorXd eigenvalues(const Assembled& sys, const std::vector<int>& keep);

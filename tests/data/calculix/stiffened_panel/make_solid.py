@@ -11,6 +11,7 @@ both checked against it.
   python3 make_solid.py 32 20 0,90,90,0 cp32 && ccx -i cp32     (a [0/90]s skin: 2 plies per brick of 0.5 mm)
 """
 import math
+import sys
 NX,NY=int(sys.argv[1]),int(sys.argv[2])
 angles=[int(a) for a in sys.argv[3].split(",")]
 NZ=len(angles)
