@@ -57,15 +57,10 @@ Eigen::MatrixXd conditionRows(const PointCondition& c, const Eigen::Vector3d& d)
 
 enum class Role : char { Free, Conditioned, Slave, Patch };
 
-}  // namespace
+std::string nodeName(long k) { return "node " + std::to_string(k); }
 
-DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditions,
-                   const std::vector<RigidCoupling>& rigid, const std::vector<PatchCondition>& patches,
-                   PatchHold hold) {
-  const long n = mesh.nodeCount();
-  const double length = std::max(mesh.characteristicLength(), 1e-12);
-  auto nodeName = [&](long k) { return "node " + std::to_string(k); };
-
+// The rows of the point conditions, stacked per node.
+std::map<long, Eigen::MatrixXd> conditionRowsByNode(const Mesh& mesh, const std::vector<PointCondition>& conditions) {
   std::map<long, Eigen::MatrixXd> rows;
   for (const auto& c : conditions) {
     if (c.node < 0) continue;
@@ -80,37 +75,85 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
       it->second = S;
     }
   }
+  return rows;
+}
 
-  std::vector<Role> role(static_cast<std::size_t>(n), Role::Free);
-  for (const auto& kv : rows) role[static_cast<std::size_t>(kv.first)] = Role::Conditioned;
-  std::vector<long> master_of(static_cast<std::size_t>(n), -1);
+// What each node's DOF are: its own (free, or reduced by its conditions), a
+// rigid slave's master's, or a patch's; for an eliminated patch, which of its
+// components are dependent.
+struct NodeRoles {
+  std::vector<Role> role;
+  std::vector<long> master_of;
+  std::vector<std::array<char, 6>> dependent;
+};
+
+NodeRoles conditionedAndSlaves(long n, const std::map<long, Eigen::MatrixXd>& rows,
+                               const std::vector<RigidCoupling>& rigid) {
+  NodeRoles r;
+  r.role.assign(static_cast<std::size_t>(n), Role::Free);
+  for (const auto& kv : rows) r.role[static_cast<std::size_t>(kv.first)] = Role::Conditioned;
+  r.master_of.assign(static_cast<std::size_t>(n), -1);
   for (const auto& rc : rigid)
     for (long s : rc.slaves) {
       if (s == rc.master) continue;
-      if (role[static_cast<std::size_t>(s)] != Role::Free)
+      if (r.role[static_cast<std::size_t>(s)] != Role::Free)
         throw std::invalid_argument(nodeName(s) +
                                     " of a rigid interface patch is also held by a reference condition or another "
                                     "patch; patches must not overlap each other or the reference sets");
-      role[static_cast<std::size_t>(s)] = Role::Slave;
-      master_of[static_cast<std::size_t>(s)] = rc.master;
+      r.role[static_cast<std::size_t>(s)] = Role::Slave;
+      r.master_of[static_cast<std::size_t>(s)] = rc.master;
     }
   for (const auto& rc : rigid)
-    if (role[static_cast<std::size_t>(rc.master)] == Role::Slave)
+    if (r.role[static_cast<std::size_t>(rc.master)] == Role::Slave)
       throw std::invalid_argument("rigid interface patches overlap at " + nodeName(rc.master));
+  r.dependent.assign(static_cast<std::size_t>(n), std::array<char, 6>{0, 0, 0, 0, 0, 0});
+  return r;
+}
 
-  // Held distributing patches: choose the dependent DOF by a column-pivoted QR.
-  std::vector<std::array<char, 6>> dependent(static_cast<std::size_t>(n), std::array<char, 6>{0, 0, 0, 0, 0, 0});
-  struct PatchElimination {
-    std::vector<long> nodes;
-    Eigen::MatrixXd P;  // (6 p, n_independent): q_patch = P r_I
-    std::vector<std::pair<long, int>> independent;  // (node, component) of each column of P
-  };
-  std::vector<PatchElimination> elim;
-  std::vector<HeldPatch> held;
+struct PatchElimination {
+  std::vector<long> nodes;
+  Eigen::MatrixXd P;  // (6 p, n_independent): q_patch = P r_I
+  std::vector<std::pair<long, int>> independent;  // (node, component) of each column of P
+};
+
+// An eliminated patch: its dependent DOF (marked in r.dependent) from the
+// column-pivoted QR's pivots, expressed through the independent ones.
+PatchElimination eliminatePatch(const PatchCondition& pc, const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr,
+                                NodeRoles& r) {
+  const long p = static_cast<long>(pc.nodes.size());
+  const long c = pc.C.rows();
+  std::vector<char> is_dep(static_cast<std::size_t>(6 * p), 0);
+  for (long i = 0; i < c; ++i) is_dep[static_cast<std::size_t>(qr.colsPermutation().indices()(i))] = 1;
+  std::vector<long> dep, ind;
+  for (long j = 0; j < 6 * p; ++j) (is_dep[static_cast<std::size_t>(j)] ? dep : ind).push_back(j);
+  Eigen::MatrixXd CD(c, c), CI(c, static_cast<long>(ind.size()));
+  for (long i = 0; i < c; ++i) CD.col(i) = pc.C.col(dep[static_cast<std::size_t>(i)]);
+  for (std::size_t i = 0; i < ind.size(); ++i) CI.col(static_cast<long>(i)) = pc.C.col(ind[i]);
+  const Eigen::MatrixXd X = -CD.partialPivLu().solve(CI);
+  PatchElimination e;
+  e.nodes = pc.nodes;
+  e.P = Eigen::MatrixXd::Zero(6 * p, static_cast<long>(ind.size()));
+  for (std::size_t i = 0; i < ind.size(); ++i) {
+    e.P(ind[i], static_cast<long>(i)) = 1.0;
+    e.independent.emplace_back(pc.nodes[static_cast<std::size_t>(ind[i] / 6)], static_cast<int>(ind[i] % 6));
+  }
+  for (long i = 0; i < c; ++i) {
+    e.P.row(dep[static_cast<std::size_t>(i)]) = X.row(i);
+    r.dependent[static_cast<std::size_t>(pc.nodes[static_cast<std::size_t>(dep[static_cast<std::size_t>(i)] / 6)])]
+               [static_cast<std::size_t>(dep[static_cast<std::size_t>(i)] % 6)] = 1;
+  }
+  for (long k : pc.nodes) r.role[static_cast<std::size_t>(k)] = Role::Patch;
+  return e;
+}
+
+// Held distributing patches: checked independent by a column-pivoted QR, then
+// eliminated (elim) or held by multipliers (held).
+void distributingPatches(const std::vector<PatchCondition>& patches, PatchHold hold, double length, NodeRoles& r,
+                         std::vector<PatchElimination>& elim, std::vector<HeldPatch>& held) {
   for (const auto& pc : patches) {
     const long p = static_cast<long>(pc.nodes.size());
     for (long k : pc.nodes)
-      if (role[static_cast<std::size_t>(k)] != Role::Free)
+      if (r.role[static_cast<std::size_t>(k)] != Role::Free)
         throw std::invalid_argument(nodeName(k) + " of a held distributing interface patch is also held otherwise or in "
                                                   "another patch; patches must not overlap each other or the reference sets");
     // Scale rotation columns by the body size so the pivoting compares like with like.
@@ -124,36 +167,16 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
                                   std::to_string(qr.rank()) + " of " + std::to_string(c) + ")");
     if (hold == PatchHold::Multipliers) {
       // The patch nodes keep their own six DOF; the rows join as multipliers.
-      for (long k : pc.nodes) role[static_cast<std::size_t>(k)] = Role::Patch;
+      for (long k : pc.nodes) r.role[static_cast<std::size_t>(k)] = Role::Patch;
       held.push_back({pc.nodes, pc.C});
       continue;
     }
-    std::vector<char> is_dep(static_cast<std::size_t>(6 * p), 0);
-    for (long i = 0; i < c; ++i) is_dep[static_cast<std::size_t>(qr.colsPermutation().indices()(i))] = 1;
-    std::vector<long> dep, ind;
-    for (long j = 0; j < 6 * p; ++j) (is_dep[static_cast<std::size_t>(j)] ? dep : ind).push_back(j);
-    Eigen::MatrixXd CD(c, c), CI(c, static_cast<long>(ind.size()));
-    for (long i = 0; i < c; ++i) CD.col(i) = pc.C.col(dep[static_cast<std::size_t>(i)]);
-    for (std::size_t i = 0; i < ind.size(); ++i) CI.col(static_cast<long>(i)) = pc.C.col(ind[i]);
-    const Eigen::MatrixXd X = -CD.partialPivLu().solve(CI);
-    PatchElimination e;
-    e.nodes = pc.nodes;
-    e.P = Eigen::MatrixXd::Zero(6 * p, static_cast<long>(ind.size()));
-    for (std::size_t i = 0; i < ind.size(); ++i) {
-      e.P(ind[i], static_cast<long>(i)) = 1.0;
-      e.independent.emplace_back(pc.nodes[static_cast<std::size_t>(ind[i] / 6)], static_cast<int>(ind[i] % 6));
-    }
-    for (long i = 0; i < c; ++i) {
-      e.P.row(dep[static_cast<std::size_t>(i)]) = X.row(i);
-      dependent[static_cast<std::size_t>(pc.nodes[static_cast<std::size_t>(dep[static_cast<std::size_t>(i)] / 6)])]
-               [static_cast<std::size_t>(dep[static_cast<std::size_t>(i)] % 6)] = 1;
-    }
-    for (long k : pc.nodes) role[static_cast<std::size_t>(k)] = Role::Patch;
-    elim.push_back(std::move(e));
+    elim.push_back(eliminatePatch(pc, qr, r));
   }
+}
 
-  // Own DOF of every node, contiguous per node.
-  DofMap map;
+// Own DOF of every node, contiguous per node; returns their count.
+long ownDofs(long n, const NodeRoles& r, const std::map<long, Eigen::MatrixXd>& rows, double length, DofMap& map) {
   map.T.resize(static_cast<std::size_t>(n));
   map.idx.resize(static_cast<std::size_t>(n));
   map.own.resize(static_cast<std::size_t>(n));
@@ -163,7 +186,7 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
   for (long i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     map.offset[ui] = next;
-    switch (role[ui]) {
+    switch (r.role[ui]) {
       case Role::Free:
         map.own[ui] = Eigen::MatrixXd::Identity(6, 6);
         map.unconstrained[ui] = 1;
@@ -186,63 +209,90 @@ DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditio
         break;
       case Role::Patch: {
         int k = 0;
-        for (int d = 0; d < 6; ++d) k += dependent[ui][static_cast<std::size_t>(d)] ? 0 : 1;
+        for (int d = 0; d < 6; ++d) k += r.dependent[ui][static_cast<std::size_t>(d)] ? 0 : 1;
         map.own[ui] = Eigen::MatrixXd::Zero(k, 6);
-        int r = 0;
+        int row = 0;
         for (int d = 0; d < 6; ++d)
-          if (!dependent[ui][static_cast<std::size_t>(d)]) map.own[ui](r++, d) = 1.0;
+          if (!r.dependent[ui][static_cast<std::size_t>(d)]) map.own[ui](row++, d) = 1.0;
         map.unconstrained[ui] = k == 6 ? 1 : 0;  // a node of a patch held by multipliers
         break;
       }
     }
     next += map.own[ui].rows();
   }
-  // The multipliers after every nodal reduced DOF.
-  for (const auto& h : held) map.multipliers += h.C.rows();
-  map.held = std::move(held);
-  map.reduced = next + map.multipliers;
+  return next;
+}
 
-  // T and idx: own DOF first, then slaves through their masters, patches through P.
+// T and idx of an eliminated patch's nodes with dependent DOF: through P.
+void expressThroughPatch(const PatchElimination& e, const NodeRoles& r, DofMap& map) {
+  // Reduced index of each independent column.
+  std::vector<long> col_index;
+  for (const auto& [node, comp] : e.independent) {
+    const auto un = static_cast<std::size_t>(node);
+    int k = 0;
+    for (int d = 0; d < comp; ++d) k += r.dependent[un][static_cast<std::size_t>(d)] ? 0 : 1;
+    col_index.push_back(map.offset[un] + k);
+  }
+  for (std::size_t a = 0; a < e.nodes.size(); ++a) {
+    const auto ua = static_cast<std::size_t>(e.nodes[a]);
+    const auto& dep = r.dependent[ua];
+    if (std::none_of(dep.begin(), dep.end(), [](char c) { return c != 0; })) continue;  // own DOF only
+    const Eigen::MatrixXd rowsP = e.P.middleRows(6 * static_cast<long>(a), 6);
+    std::vector<long> cols;
+    for (long j = 0; j < rowsP.cols(); ++j)
+      if (rowsP.col(j).cwiseAbs().maxCoeff() > 0.0) cols.push_back(j);
+    map.T[ua].resize(6, static_cast<long>(cols.size()));
+    map.idx[ua].clear();
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      map.T[ua].col(static_cast<long>(j)) = rowsP.col(cols[j]);
+      map.idx[ua].push_back(col_index[static_cast<std::size_t>(cols[j])]);
+    }
+  }
+}
+
+// T and idx: own DOF first, then patches through P, slaves through their masters.
+void expressNodes(const Mesh& mesh, const NodeRoles& r, const std::vector<PatchElimination>& elim, DofMap& map) {
+  const long n = static_cast<long>(r.role.size());
   for (long i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    if (role[ui] == Role::Free || role[ui] == Role::Conditioned || role[ui] == Role::Patch) {
+    if (r.role[ui] == Role::Free || r.role[ui] == Role::Conditioned || r.role[ui] == Role::Patch) {
       map.T[ui] = map.own[ui].transpose();
       for (long j = 0; j < map.own[ui].rows(); ++j) map.idx[ui].push_back(map.offset[ui] + j);
     }
   }
-  for (const auto& e : elim) {
-    // Reduced index of each independent column.
-    std::vector<long> col_index;
-    for (const auto& [node, comp] : e.independent) {
-      const auto un = static_cast<std::size_t>(node);
-      int r = 0;
-      for (int d = 0; d < comp; ++d) r += dependent[un][static_cast<std::size_t>(d)] ? 0 : 1;
-      col_index.push_back(map.offset[un] + r);
-    }
-    for (std::size_t a = 0; a < e.nodes.size(); ++a) {
-      const auto ua = static_cast<std::size_t>(e.nodes[a]);
-      const auto& dep = dependent[ua];
-      if (std::none_of(dep.begin(), dep.end(), [](char c) { return c != 0; })) continue;  // own DOF only
-      const Eigen::MatrixXd rowsP = e.P.middleRows(6 * static_cast<long>(a), 6);
-      std::vector<long> cols;
-      for (long j = 0; j < rowsP.cols(); ++j)
-        if (rowsP.col(j).cwiseAbs().maxCoeff() > 0.0) cols.push_back(j);
-      map.T[ua].resize(6, static_cast<long>(cols.size()));
-      map.idx[ua].clear();
-      for (std::size_t j = 0; j < cols.size(); ++j) {
-        map.T[ua].col(static_cast<long>(j)) = rowsP.col(cols[j]);
-        map.idx[ua].push_back(col_index[static_cast<std::size_t>(cols[j])]);
-      }
-    }
-  }
+  for (const auto& e : elim) expressThroughPatch(e, r, map);
   for (long i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    if (role[ui] != Role::Slave) continue;
-    const long m = master_of[ui];
+    if (r.role[ui] != Role::Slave) continue;
+    const long m = r.master_of[ui];
     const Eigen::Vector3d d = (mesh.nodes.row(i) - mesh.nodes.row(m)).transpose();
     map.T[ui] = rigidTransfer(d) * map.T[static_cast<std::size_t>(m)];
     map.idx[ui] = map.idx[static_cast<std::size_t>(m)];
   }
+}
+
+}  // namespace
+
+// The stages: the conditions' rows per node, the rigid slaves, the
+// distributing patches (eliminated or held), each node's own DOF, the
+// multipliers after them, then every node's T and reduced indices.
+DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditions,
+                   const std::vector<RigidCoupling>& rigid, const std::vector<PatchCondition>& patches,
+                   PatchHold hold) {
+  const long n = mesh.nodeCount();
+  const double length = std::max(mesh.characteristicLength(), 1e-12);
+  const std::map<long, Eigen::MatrixXd> rows = conditionRowsByNode(mesh, conditions);
+  NodeRoles roles = conditionedAndSlaves(n, rows, rigid);
+  std::vector<PatchElimination> elim;
+  std::vector<HeldPatch> held;
+  distributingPatches(patches, hold, length, roles, elim, held);
+  DofMap map;
+  const long next = ownDofs(n, roles, rows, length, map);
+  // The multipliers after every nodal reduced DOF.
+  for (const auto& h : held) map.multipliers += h.C.rows();
+  map.held = std::move(held);
+  map.reduced = next + map.multipliers;
+  expressNodes(mesh, roles, elim, map);
   return map;
 }
 

@@ -16,11 +16,33 @@ std::string tailFrom(const std::string& line, const std::string& marker) {
   return at == std::string::npos ? "" : line.substr(at + 2);
 }
 
+// The elements of property p (property_of[e] == p, e < count): members,
+// their summed mass (mass_of(e)) and their axes (axis_of[e]).
+template <class MassOf>
+void addMembers(FlexRegion& r, std::size_t count, const std::vector<int>& property_of, std::size_t p, MassOf mass_of,
+                const std::vector<Eigen::Vector3d>& axis_of) {
+  for (std::size_t e = 0; e < count; ++e) {
+    if (property_of[e] != static_cast<int>(p)) continue;
+    r.mass += mass_of(e);
+    r.members.push_back(static_cast<long>(e));
+  }
+  r.axes.resize(static_cast<long>(r.members.size()), 3);
+  for (std::size_t k = 0; k < r.members.size(); ++k)
+    r.axes.row(static_cast<long>(k)) = axis_of[static_cast<std::size_t>(r.members[k])].transpose();
+}
+
 }  // namespace
 
 std::vector<FlexRegion> regionRecords(const Mesh& mesh, const std::vector<std::string>& summary) {
   std::vector<FlexRegion> out;
   std::set<std::string> names;
+  // A shell or beam region with its printed line and the axis part of it.
+  auto keep = [&](FlexRegion& r, const std::string& axis_marker) {
+    r.summary = lineOf(summary, r.name);
+    r.axis = tailFrom(r.summary, axis_marker);
+    names.insert(r.name);
+    out.push_back(std::move(r));
+  };
   for (std::size_t p = 0; p < mesh.shell_properties.size(); ++p) {
     const ShellProperty& sp = mesh.shell_properties[p];
     FlexRegion r;
@@ -29,20 +51,13 @@ std::vector<FlexRegion> regionRecords(const Mesh& mesh, const std::vector<std::s
     r.members_of = "triangles";
     r.property = sp.laminate_name;
     r.element = sp.kind == fe::ShellKind::DST ? "dst" : "dkt";
-    for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-      if (mesh.triangle_property[e] != static_cast<int>(p)) continue;
+    auto mass = [&](std::size_t e) {
       const auto& t = mesh.triangles[e];
       const Eigen::Vector3d x0 = mesh.nodes.row(t[0]), x1 = mesh.nodes.row(t[1]), x2 = mesh.nodes.row(t[2]);
-      r.mass += 0.5 * (x1 - x0).cross(x2 - x0).norm() * sp.laminate.mass_per_area;
-      r.members.push_back(static_cast<long>(e));
-    }
-    r.axes.resize(static_cast<long>(r.members.size()), 3);
-    for (std::size_t k = 0; k < r.members.size(); ++k)
-      r.axes.row(static_cast<long>(k)) = mesh.triangle_axis[static_cast<std::size_t>(r.members[k])].transpose();
-    r.summary = lineOf(summary, r.name);
-    r.axis = tailFrom(r.summary, ", fibre ");
-    names.insert(r.name);
-    out.push_back(std::move(r));
+      return 0.5 * (x1 - x0).cross(x2 - x0).norm() * sp.laminate.mass_per_area;
+    };
+    addMembers(r, mesh.triangles.size(), mesh.triangle_property, p, mass, mesh.triangle_axis);
+    keep(r, ", fibre ");
   }
   for (std::size_t p = 0; p < mesh.beam_properties.size(); ++p) {
     const BeamProperty& bp = mesh.beam_properties[p];
@@ -52,19 +67,12 @@ std::vector<FlexRegion> regionRecords(const Mesh& mesh, const std::vector<std::s
     r.members_of = "beams";
     r.property = bp.source;
     r.element = "timoshenko";
-    for (std::size_t e = 0; e < mesh.beams.size(); ++e) {
-      if (mesh.beam_property[e] != static_cast<int>(p)) continue;
+    auto mass = [&](std::size_t e) {
       const auto& b = mesh.beams[e];
-      r.mass += (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm() * bp.Ms(0, 0);
-      r.members.push_back(static_cast<long>(e));
-    }
-    r.axes.resize(static_cast<long>(r.members.size()), 3);
-    for (std::size_t k = 0; k < r.members.size(); ++k)
-      r.axes.row(static_cast<long>(k)) = mesh.beam_x2[static_cast<std::size_t>(r.members[k])].transpose();
-    r.summary = lineOf(summary, r.name);
-    r.axis = tailFrom(r.summary, ", x2 ");
-    names.insert(r.name);
-    out.push_back(std::move(r));
+      return (mesh.nodes.row(b[1]) - mesh.nodes.row(b[0])).norm() * bp.Ms(0, 0);
+    };
+    addMembers(r, mesh.beams.size(), mesh.beam_property, p, mass, mesh.beam_x2);
+    keep(r, ", x2 ");
   }
   // Node sets (physical groups, Nastran sets) that are no region of their own.
   for (const auto& [name, nodes] : mesh.sets) {

@@ -19,6 +19,7 @@
 #include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/output/results.h"
 #include "mbs-run/scene/scene.h"
+#include "mbs-run/run/run_policy.h"
 #include "mbs-run/run/simulation.h"
 
 namespace {
@@ -162,7 +163,7 @@ void printPeaks(const fc::mbs::Model& m, const fc::mbs::RunSummary& r, const std
 }
 
 void printMargins(const fc::mbs::Model& m, const fc::mbs::RunSummary& r) {
-  // Margins (monitors/margins.h): the named beams against buckling, the named
+  // Margins (run/margins.h): the named beams against buckling, the named
   // joints' peak reactions, every latch's arrival.
   const fc::mbs::Margins& mg = r.margins;
   for (std::size_t k = 0; k < m.margin_beams.size() && k < mg.beams.size(); ++k) {
@@ -230,8 +231,10 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "results file to write (HDF5, results/1)")->required();
   app.add_option("--t-end", t_end, "end time, overrides simulation.t_end")->check(CLI::PositiveNumber);
   app.add_option("--rtol", rtol, "relative tolerance, overrides simulation.rtol")->check(CLI::Range(1e-13, 0.1));
-  app.add_option("--integrator", integrator, "auto | dopri5 | trbdf2 | imex, overrides simulation.integrator")
-      ->check(CLI::IsMember({"auto", "dopri5", "trbdf2", "imex"}));
+  std::string names;
+  for (const std::string& n : fc::mbs::integratorNames()) names += (names.empty() ? "" : " | ") + n;
+  app.add_option("--integrator", integrator, names + ", overrides simulation.integrator")
+      ->check(CLI::IsMember(fc::mbs::integratorNames()));
   app.add_option("--csv", csv, "also write chosen channels to this CSV file");
   app.add_option("--channels", channels,
                  "comma-separated channels for --csv, e.g. joints/R3/angle,bodies/B3/angular_velocity "
@@ -266,12 +269,8 @@ int main(int argc, char** argv) {
     fc::mbs::Model model = fc::mbs::loadScene(input);
     if (t_end > 0) model.settings.t_end = t_end;
     if (rtol > 0) model.settings.rtol = rtol;
-    // --integrator replaces the scene's choice, parsed and decided as the scene's (scene.h).
-    if (!integrator.empty()) {
-      model.settings.integrator = *fc::mbs::integratorNamed(integrator);
-      model.settings.switch_when_stiff = false;
-      fc::mbs::resolveAutoIntegrator(model);
-    }
+    // --integrator replaces the scene's choice; the run decides what it means (run/run_policy.h).
+    if (!integrator.empty()) model.settings.integrator = *fc::mbs::integratorNamed(integrator);
     std::vector<std::string> chosen = splitComma(channels);
     if (chosen.empty()) {
       for (const auto& j : model.joints)

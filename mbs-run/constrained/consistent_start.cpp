@@ -4,7 +4,7 @@
 #include <sstream>
 #include <string>
 
-#include "mbs-run/run/finite_guard.h"
+#include "mbs-run/integrators/integrator.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 
 namespace fc::mbs {

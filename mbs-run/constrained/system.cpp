@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/rotations.h"
+#include "mbs-run/mechanics/energy_sensitivity.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/flexible/flexible_inertia.h"
 #include "mbs-run/mechanics/flexible/modal.h"
@@ -751,33 +752,7 @@ EnergySensitivity System::energySensitivity(double t, const VectorXd& y) const {
   poses(y, P);
   ForceSums sums;
   appliedForces(P, sums);
-  EnergySensitivity e;
-  auto add = [&e](double g, double y_i) {
-    e.absolute += std::abs(g);
-    e.relative += std::abs(g * y_i);
-  };
-  for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
-    const Body& b = model_.bodies[k];
-    if (b.fixed) continue;
-    VectorXd v(b.nv());
-    v << P[k].rdot, P[k].w, P[k].modal_rate;
-    const VectorXd p = b.flex ? VectorXd(flexibleMassMatrix(b.flex->inertia, P[k].A, P[k].modal, b.flex->secondOrder()) * v)
-                              : VectorXd(rigidMassMatrix(b.mass, b.com, b.inertia_com, P[k].A) * v);
-    for (int i = 0; i < b.nv(); ++i) add(p[i], v[i]);
-    const VectorXd Q = sums.Q.segment(b.dof_index, b.nv());
-    // Positions: the translation's coordinates; a rotation's Euler parameters
-    // (|p| = 1, a rotation of 2 |dp|); the modal coordinates with their
-    // elastic forces.
-    for (int i = 0; i < 3; ++i) add(Q[i], P[k].r[i]);
-    for (int i = 3; i < 6; ++i) add(2.0 * Q[i], 1.0);
-    if (b.modes > 0) {
-      const VectorXd f = Q.tail(b.modes) - elasticForces(b.flex->modal, P[k].modal, VectorXd::Zero(b.modes));
-      for (int j = 0; j < b.modes; ++j) add(f[j], P[k].modal[j]);
-    }
-  }
-  add(1.0, y[model_.nq + model_.nv]);
-  add(1.0, y[model_.nq + model_.nv + 1]);
-  return e;
+  return fc::mbs::energySensitivity(model_, P, sums.Q, y[model_.nq + model_.nv], y[model_.nq + model_.nv + 1]);
 }
 
 std::vector<JointReaction> System::reactions(double t, const VectorXd& y) {

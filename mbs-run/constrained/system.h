@@ -19,6 +19,7 @@
 
 #include "mbs-run/constrained/augmented_lagrangian.h"
 #include "mbs-run/mechanics/constraints.h"
+#include "mbs-run/mechanics/energy_sensitivity.h"
 #include "mbs-run/integrators/integrator.h"
 #include "mbs-run/mechanics/force_elements.h"
 #include "mbs-run/model/model.h"
@@ -28,18 +29,6 @@ namespace fc::mbs {
 struct Energies {
   double kinetic = 0, potential = 0, strain = 0, dissipated = 0, applied_work = 0;
   double total() const { return kinetic + potential + strain + dissipated - applied_work; }
-};
-
-// How much an error in the state can change the energy balance
-// T + V + D - W, for the run-quality allowance (run_quality.h): with g_i =
-// dE/dy_i over the state's components (momenta M v for the velocities,
-// applied and elastic generalised forces for the positions, 1 for the two
-// energy integrals), absolute = sum |g_i| [J per unit state error] and
-// relative = sum |g_i| |y_i| [J]: a local error e_i <= rtol |y_i| + atol
-// changes E by at most rtol relative + atol absolute (run_quality.cpp uses
-// the absolute part; docs/mbs-run.md, "Run quality").
-struct EnergySensitivity {
-  double absolute = 0.0, relative = 0.0;
 };
 
 struct EvalStats {

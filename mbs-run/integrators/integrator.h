@@ -8,12 +8,20 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace fc::mbs {
 
 using Rhs = std::function<void(double, const Eigen::VectorXd&, Eigen::VectorXd&)>;
+
+// A state or right-hand side that went non-finite, naming what did: thrown by
+// the run's guard (run/finite_guard.h) and by both formulations' starts.
+class NonFiniteState : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct Tolerances {
   double rtol = 1e-6;

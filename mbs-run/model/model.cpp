@@ -100,6 +100,4 @@ int Model::forceIndex(const std::string& name) const {
   return -1;
 }
 
-double absoluteTolerance(const Settings& st) { return st.atol > 0 ? st.atol : 1e-3 * st.rtol; }
-
 }  // namespace fc::mbs

@@ -14,6 +14,7 @@
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/flexible/modal.h"
 #include "mbs-run/monitors/stress_recovery.h"
+#include "mbs-run/run/run_policy.h"
 
 namespace fc::mbs {
 
@@ -206,14 +207,14 @@ void writeStressFields(fc::H5File& f, const Model& model, const RunSummary& r) {
   }
 }
 
-// Distances, margins, overshoots, latches and clearances (monitors/margins.h).
+// Distances, margins, overshoots, latches and clearances (run/margins.h).
 void writeMargins(fc::H5File& f, const Model& model, const RunSummary& r) {
   // Contact monitor summary: the smallest distance of each pair and when.
   for (std::size_t k = 0; k < model.distance_pairs.size() && k < r.smallest_distance.size(); ++k) {
     f.setAttribute("/" + distanceChannel(model, k), "minimum", r.smallest_distance[k].value);
     f.setAttribute("/" + distanceChannel(model, k), "time_of_minimum", r.smallest_distance[k].time);
   }
-  // Margins (monitors/margins.h, docs/file-formats.md "Margins"): each joint's
+  // Margins (run/margins.h, docs/file-formats.md "Margins"): each joint's
   // peak reactions as attributes of its reaction datasets, each named beam's
   // axial compression against its Euler load, the latches' arrivals, and the
   // smallest of each over the run as root attributes.

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "mbs-run/integrators/integrator.h"
-#include "mbs-run/monitors/margins.h"
+#include "mbs-run/run/margins.h"
 #include "mbs-run/run/sampling.h"
 
 namespace fc::mbs {

@@ -18,11 +18,6 @@
 
 namespace fc::mbs {
 
-class NonFiniteState : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 class FiniteGuard {
  public:
   // Consecutive non-finite evaluations tolerated: a few rejected steps of

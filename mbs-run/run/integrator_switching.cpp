@@ -10,15 +10,6 @@
 
 namespace fc::mbs {
 
-Tolerances tolerances(const Settings& st, int size) {
-  Tolerances tol;
-  tol.rtol = st.rtol;
-  tol.atol = absoluteTolerance(st);
-  tol.max_step = st.max_step > 0 ? st.max_step : 10.0 * st.output_step;
-  tol.mask = Eigen::VectorXd::Ones(size);
-  tol.mask.tail(2).setZero();
-  return tol;
-}
 namespace {
 // `imex`'s tableau by tolerance (docs/mbs-run.md, Integrators): order 4 from
 // rtol 1e-5 down, where its longer steps pay for its six stages (stiff beam
@@ -30,12 +21,12 @@ std::unique_ptr<Integrator> makeImex(Rhs f, StiffPart stiff, const Tolerances& t
 }
 }  // namespace
 
-IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, StiffPart stiff, const Tolerances& tol)
-    : settings_(settings), f_(std::move(f)), stiff_(std::move(stiff)), tol_(tol) {
-  if (settings.integrator == IntegratorKind::TrBdf2) {
+IntegratorSwitching::IntegratorSwitching(const RunPolicy& policy, Rhs f, StiffPart stiff, int size)
+    : policy_(policy), f_(std::move(f)), stiff_(std::move(stiff)), tol_(policy.tolerances(size)) {
+  if (policy.integrator == IntegratorKind::TrBdf2) {
     implicit_ = makeTrBdf2(f_, tol_);
     current_ = implicit_.get();
-  } else if (settings.integrator == IntegratorKind::Imex) {
+  } else if (policy.integrator == IntegratorKind::Imex) {
     implicit_ = makeImex(f_, stiff_, tol_);
     current_ = implicit_.get();
   } else {
@@ -48,7 +39,7 @@ IntegratorSwitching::IntegratorSwitching(const Settings& settings, Rhs f, StiffP
 void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
   declines_ = 0;  // new dynamics: a new trial may switch at once
   retry_at_ = -std::numeric_limits<double>::infinity();
-  if (settings_.switch_when_stiff && explicit_ && current_ != explicit_.get()) {
+  if (policy_.switch_when_stiff && explicit_ && current_ != explicit_.get()) {
     current_ = explicit_.get();
     log.push_back(timeLabel(t) + " dopri5 (event)");
   }
@@ -56,9 +47,9 @@ void IntegratorSwitching::restartAfterEvent(double t, const Eigen::VectorXd& y, 
 }
 
 bool IntegratorSwitching::switchIfStiff(double t, const Eigen::VectorXd& y, std::vector<std::string>& log) {
-  if (!settings_.switch_when_stiff || current_ != explicit_.get()) return false;
+  if (!policy_.switch_when_stiff || current_ != explicit_.get()) return false;
   const double lambda = current_->stiffness();
-  if (t < retry_at_ || !(lambda > settings_.stiff_frequency)) return false;
+  if (t < retry_at_ || !(lambda > policy_.stiff_frequency)) return false;
   // Measured choice (switch_trial.h): both methods over the next
   // kTrialSteps explicit steps; stay explicit for the rest of the segment
   // unless the implicit candidate is cheaper and as accurate.

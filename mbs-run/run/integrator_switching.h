@@ -14,21 +14,15 @@
 #include <vector>
 
 #include "mbs-run/integrators/integrator.h"
-#include "mbs-run/model/model.h"
+#include "mbs-run/run/run_policy.h"
 
 namespace fc::mbs {
 
-// The error control a scene's settings ask for, over a state of `size`
-// entries whose last two are the energy quadratures (diagnostics, not
-// controlled): rtol, atol (default 1e-3 rtol), max_step (default ten output
-// intervals, so that a joint-angle event cannot hide two crossings inside one
-// long step of a slow motion). Both formulations integrate with it.
-Tolerances tolerances(const Settings& st, int size);
-
 class IntegratorSwitching {
  public:
-  // stiff: the modal stiffness part for the IMEX method (System::modalSplit).
-  IntegratorSwitching(const Settings& settings, Rhs f, StiffPart stiff, const Tolerances& tol);
+  // stiff: the modal stiffness part for the IMEX method (System::modalSplit);
+  // size: the length of the state (RunPolicy::tolerances).
+  IntegratorSwitching(const RunPolicy& policy, Rhs f, StiffPart stiff, int size);
   Integrator& current() { return *current_; }
   // The method's name, "dopri5+imex" (or "+trbdf2") once auto has switched.
   const std::string& label() const { return label_; }
@@ -45,7 +39,7 @@ class IntegratorSwitching {
   long rejected() const;
 
  private:
-  const Settings& settings_;
+  RunPolicy policy_;
   Rhs f_;
   StiffPart stiff_;
   Tolerances tol_;

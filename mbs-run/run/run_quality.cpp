@@ -14,7 +14,7 @@ QualityLimits qualityLimits(const RunSummary& r, double rtol, double atol) {
   QualityLimits q;
   // Per accepted step the error control keeps each component's local error
   // within rtol |y_i| + atol, which changes E = T + V + D - W by at most
-  // rtol sum |g_i y_i| + atol sum |g_i| (g = dE/dy: System::energySensitivity),
+  // rtol sum |g_i y_i| + atol sum |g_i| (g = dE/dy: mechanics/energy_sensitivity.h),
   // the local errors adding up over the steps. The relative part is taken as
   // rtol x the largest energy term (sum |g_i y_i| is that term's size with
   // absolute values and lever arms: 6x it on the 16-mode beam pendulum,

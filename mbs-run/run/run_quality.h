@@ -9,7 +9,7 @@
 // Limits: what the error control promises. Every accepted step's local error
 // is at most rtol |y| + atol (weighted norm), so
 // - energy: at most steps x (rtol x the largest energy term + atol x
-//   sum |g_i|), g = dE/dy over the state (System::energySensitivity): what
+//   sum |g_i|), g = dE/dy over the state (mechanics/energy_sensitivity.h): what
 //   the local errors allowed per step can do to E, all adding up. The atol
 //   part matters where E is still small but steep in the state: a 1 000-rod
 //   chain just released (0.48 J) whose rod heights may each be off by atol,

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "mbs-run/run/sampling.h"
-#include "mbs-run/monitors/margins.h"
+#include "mbs-run/run/margins.h"
 #include "mbs-run/monitors/stress_envelope.h"
 
 namespace fc::mbs {
@@ -30,7 +30,7 @@ struct RunSummary {
   double energy_balance_error = 0.0; // max |T + V + D - W - E_ref| per event-free segment
   double energy_scale = 0.0;         // max of |T|, |V|, D over the run, to make it relative
   double energy_dissipated = 0.0;    // D at the last output row [J]: damping, friction, impacts
-  EnergySensitivity energy_sensitivity;  // max of each over the run (System::energySensitivity)
+  EnergySensitivity energy_sensitivity;  // max of each over the run (mechanics/energy_sensitivity.h)
   double length_scale = 1.0;         // max(1 m, largest body position over the samples)
   int max_al_iterations = 0;
   // Impacts on stops, per joint (empty for joints without limits): time,

@@ -12,6 +12,7 @@
 #include "mbs-run/run/constrained_dynamics.h"
 #include "mbs-run/run/finite_guard.h"
 #include "mbs-run/run/integrator_switching.h"
+#include "mbs-run/run/run_policy.h"
 #include "mbs-run/run/run_quality.h"
 #include "mbs-run/run/tree_dynamics.h"
 
@@ -80,6 +81,7 @@ std::string failureStatus(double t) {
 RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& output) {
   const std::clock_t cpu0 = std::clock();
   const Settings& st = model.settings;
+  const RunPolicy policy = runPolicy(model);
   RunSummary R;
   R.warnings = samplingWarnings(model);
   std::unique_ptr<Dynamics> dyn = chooseFormulation(model, R);
@@ -87,13 +89,13 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   SummarySink sink(model, output, R);
   FiniteGuard guard([&dyn](double t, const VectorXd& y, VectorXd& yd) { dyn->derivative(t, y, yd); },
                     [&dyn](double t, const VectorXd& y) { return dyn->nonFiniteCause(t, y); });
-  IntegratorSwitching methods(st, guard.rhs(), dyn->stiffPart(), tolerances(st, dyn->size()));
+  IntegratorSwitching methods(policy, guard.rhs(), dyn->stiffPart(), dyn->size());
   R.integrator = methods.label();
   OutputClock clock(st.output_step, st.t_end);
   StallMonitor stall(st.t_end);
   EnergyBalance balance;
   fc::Progress progress("mbs-run", st.t_end, options.quiet);
-  const double atol = absoluteTolerance(st);
+  const double atol = policy.atol;
   double t = 0.0;
   // Any failure (a kernel throwing, a singular factorisation, a non-finite
   // state, contradicting joints, a signal) ends the run with what was
@@ -114,7 +116,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
       }
       Integrator& integ = methods.current();
       if (!integ.step(dyn->stepLimit(st.t_end))) {
-        R.status = stepFailure(t, integ.name(), st.rtol, atol);
+        R.status = stepFailure(t, integ.name(), policy.rtol, atol);
         break;
       }
       const double t_new = dyn->locateEvent(integ, t, y);
@@ -159,7 +161,7 @@ RunSummary simulate(const Model& model, const RunOptions& options, SampleSink& o
   R.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
   // A run that reached its end says whether its answer is within its
   // tolerances (run_quality.h): "completed" only then.
-  if (R.status == "completed") R.status = qualityStatus(R, st.rtol, atol);
+  if (R.status == "completed") R.status = qualityStatus(R, policy.rtol, atol);
   return R;
 }
 

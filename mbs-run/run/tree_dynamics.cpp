@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "mbs-run/mechanics/energy_sensitivity.h"
 #include "mbs-run/mechanics/force_elements.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/run/finite_guard.h"
@@ -108,34 +109,15 @@ class TreeRhs {
     return treeReactions(m_, tree_, P_, z.segment(n(), n()), qdd_, sums_.Q);
   }
 
-  // As System::energySensitivity for rigid bodies (system.h, run_quality.h):
-  // the momenta M v against the velocities, every enabled element's
-  // generalised forces against the positions, 1 for the two quadratures.
+  // Every enabled element's generalised forces at z, for the run-quality
+  // allowance (mechanics/energy_sensitivity.h), as the constrained rows report it.
   EnergySensitivity energySensitivity(const VectorXd& z) {
     poses(z);
     ForceSums sums;
     sums.Q.setZero(m_.nv);
     for (const ForceElement& fe : m_.forces)
       if (fe.enabled) addForceElement(m_, fe, P_, rt_, ForceQuantity::ForcesAndPowers, sums);
-    EnergySensitivity e;
-    auto add = [&e](double g, double y_i) {
-      e.absolute += std::abs(g);
-      e.relative += std::abs(g * y_i);
-    };
-    for (std::size_t k = 0; k < m_.bodies.size(); ++k) {
-      const Body& b = m_.bodies[k];
-      if (b.fixed) continue;
-      Vector6d v;
-      v << P_[k].rdot, P_[k].w;
-      const Vector6d p = rigidMassMatrix(b.mass, b.com, b.inertia_com, P_[k].A) * v;
-      for (int i = 0; i < 6; ++i) add(p[i], v[i]);
-      const Vector6d Q = sums.Q.segment<6>(b.dof_index);
-      for (int i = 0; i < 3; ++i) add(Q[i], P_[k].r[i]);
-      for (int i = 3; i < 6; ++i) add(2.0 * Q[i], 1.0);  // Euler parameters: |p| = 1, a rotation of 2 |dp|
-    }
-    add(1.0, z[2 * n()]);
-    add(1.0, z[2 * n() + 1]);
-    return e;
+    return fc::mbs::energySensitivity(m_, P_, sums.Q, z[2 * n()], z[2 * n() + 1]);
   }
 
   // The largest |Phi| of the joints' constraint equations (constraints.h) at

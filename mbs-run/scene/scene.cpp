@@ -7,10 +7,11 @@
 
 #include "common/rotations.h"
 #include "mbs-run/monitors/bounding_volume_tree.h"
-#include "mbs-run/monitors/margins.h"
+#include "mbs-run/run/margins.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
+#include "mbs-run/run/run_policy.h"
 
 namespace fc::mbs {
 
@@ -528,6 +529,14 @@ void applyPreset(const InputNode& node, Settings& st) {
             "; expected fast or accurate");
 }
 
+// "a, b or c".
+std::string oneOf(const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    s += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return s;
+}
+
 void parseSimulation(const InputNode& s, Settings& st) {
   s.allowKeys({"preset", "t_end", "output_step", "rtol", "atol", "integrator", "max_step", "penalty",
                "stabilization_frequency", "stabilization_damping", "multiplier_iterations", "linear_solver",
@@ -567,7 +576,7 @@ void parseSimulation(const InputNode& s, Settings& st) {
   if (!s.has("integrator")) return;  // keep the preset's (or the default auto)
   const std::string integ = s["integrator"].asString();
   if (const std::optional<IntegratorKind> kind = integratorNamed(integ)) st.integrator = *kind;
-  else s["integrator"].fail("expected auto, dopri5, trbdf2 or imex, got '" + integ + "'");
+  else s["integrator"].fail("expected " + oneOf(integratorNames()) + ", got '" + integ + "'");
 }
 
 template <class F>
@@ -641,7 +650,7 @@ int jointRef(const Model& m, const InputNode& n) {
   return k;
 }
 
-// outputs.margins (monitors/margins.h, docs/mbs-run.md "Margins"):
+// outputs.margins (run/margins.h, docs/mbs-run.md "Margins"):
 //   beams: [{body: B11, EI: 10.12, ends: pinned, joints: [S5, S2]}, ...]
 //   joints: [R1, H23, ...]   (printed in the summary; every joint's peaks are written)
 void parseMargins(const InputNode& mg, Model& m) {
@@ -766,57 +775,9 @@ Model parseScene(const InputNode& root) {
   forEachEntry(root, "events", [&](const InputNode& e, int) { m.events.push_back(parseEvent(m, e)); });
   if (root.has("outputs")) parseOutputs(root["outputs"], m);
   parseSimulation(root["simulation"], m.settings);
-  resolveAutoIntegrator(m);
   return m;
 }
 
-std::optional<IntegratorKind> integratorNamed(const std::string& name) {
-  if (name == "auto") return IntegratorKind::Auto;
-  if (name == "dopri5") return IntegratorKind::DormandPrince;
-  if (name == "trbdf2") return IntegratorKind::TrBdf2;
-  if (name == "imex") return IntegratorKind::Imex;
-  return std::nullopt;
-}
-
-void resolveAutoIntegrator(Model& m) {
-  if (m.settings.integrator != IntegratorKind::Auto) return;
-  m.settings.integrator = chooseIntegrator(m);
-  m.settings.switch_when_stiff = m.settings.integrator == IntegratorKind::DormandPrince;
-}
-
 Model loadScene(const std::string& path) { return parseScene(InputNode::loadFile(path)); }
-
-IntegratorKind chooseIntegrator(const Model& m) {
-  // Highest natural frequency a force element can introduce (spring stiffness
-  // over the lightest attached mass or inertia). Dormand-Prince's stability
-  // boundary is |h lambda| ~ 3.3: above ~2000 rad/s the explicit step would be
-  // set by stability (< 1.6 ms) rather than accuracy, where TR-BDF2 wins.
-  double wmax = 0.0;
-  auto lightest = [&](int i, int j, bool rotary) {
-    double v = std::numeric_limits<double>::infinity();
-    for (int k : {i, j}) {
-      const Body& b = m.bodies[k];
-      if (b.fixed) continue;
-      v = std::min(v, rotary ? b.inertia_com.diagonal().maxCoeff() : b.mass);
-    }
-    return v;
-  };
-  for (const ForceElement& f : m.forces) {
-    if (f.type == ForceType::TranslationalSpringDamper) {
-      wmax = std::max(wmax, std::sqrt(f.stiffness / lightest(f.body_i, f.body_j, false)));
-    } else if (f.type == ForceType::RotationalSpringDamper) {
-      double slope = 0.0;
-      for (std::size_t k = 1; k < f.torque.x.size(); ++k)
-        slope = std::max(slope, std::abs((f.torque.y[k] - f.torque.y[k - 1]) / (f.torque.x[k] - f.torque.x[k - 1])));
-      const Joint& jt = m.joints[f.joint];
-      wmax = std::max(wmax, std::sqrt(slope / lightest(jt.body_i, jt.body_j, true)));
-    }
-  }
-  // Modal frequencies are deliberately not counted: joints often clamp the
-  // stiffest modes (the SAR crank's 1 kHz modes with R1 locked), so which
-  // modes are stiff is known only from the constrained motion; the run
-  // measures it (Settings::switch_when_stiff, simulation.cpp).
-  return wmax > 2000.0 ? IntegratorKind::TrBdf2 : IntegratorKind::DormandPrince;
-}
 
 }  // namespace fc::mbs

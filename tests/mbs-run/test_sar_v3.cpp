@@ -2,7 +2,7 @@
 // copied from the project's shared reference folder; the figures checked here are
 // those of tests/data/sar/sar-antenna-model-v3.md, "Changes from v2" and "The knee,
 // the stop, the latch and the end of phase 1"), whole 30 s, with the margins
-// monitor (outputs.margins, mbs-run/monitors/margins.h) on the V-coupler legs:
+// monitor (outputs.margins, mbs-run/run/margins.h) on the V-coupler legs:
 // - phase 1: the knee minimum (0.030 rad, 6.126 s), the coplanar stop's Newton
 //   impact (6.2245 s, -0.925 -> +0.277 rad/s), the hinge-2/3 latch 0.01 rad
 //   behind it (6.2604 s), the knee then held at 0.0867 rad;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "helpers.h"
+#include "mbs-run/run/run_policy.h"
 #include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
@@ -30,26 +31,34 @@ simulation: )" + simulation + "\n";
 
 TEST(Presets, FillDefaultsAndExplicitKeysWin) {
   // fast: auto, which picks dopri5 for this soft scene and may switch to
-  // TR-BDF2 where the run proves stiff; accurate: dopri5 throughout.
-  Settings s = sceneFromText(pendulum("{t_end: 1, preset: fast}")).settings;
-  EXPECT_EQ(s.rtol, 1e-4);
-  EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
-  EXPECT_TRUE(s.switch_when_stiff);
-  s = sceneFromText(pendulum("{t_end: 1, preset: accurate}")).settings;
-  EXPECT_EQ(s.rtol, 1e-7);
-  EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
-  EXPECT_FALSE(s.switch_when_stiff);
+  // TR-BDF2 where the run proves stiff; accurate: dopri5 throughout. The
+  // scene records what was asked for, the run policy what it means.
+  Model m = sceneFromText(pendulum("{t_end: 1, preset: fast}"));
+  EXPECT_EQ(m.settings.rtol, 1e-4);
+  EXPECT_EQ(m.settings.integrator, IntegratorKind::Auto);
+  RunPolicy p = runPolicy(m);
+  EXPECT_EQ(p.integrator, IntegratorKind::DormandPrince);
+  EXPECT_TRUE(p.switch_when_stiff);
+  EXPECT_EQ(p.atol, 1e-3 * 1e-4);  // the default atol
+  m = sceneFromText(pendulum("{t_end: 1, preset: accurate}"));
+  p = runPolicy(m);
+  EXPECT_EQ(p.rtol, 1e-7);
+  EXPECT_EQ(p.integrator, IntegratorKind::DormandPrince);
+  EXPECT_FALSE(p.switch_when_stiff);
   // Order in the map does not matter: explicit keys override the preset.
-  s = sceneFromText(pendulum("{rtol: 1.0e-5, t_end: 1, preset: fast}")).settings;
-  EXPECT_EQ(s.rtol, 1e-5);
-  EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
-  s = sceneFromText(pendulum("{t_end: 1, preset: accurate, integrator: trbdf2}")).settings;
-  EXPECT_EQ(s.rtol, 1e-7);
-  EXPECT_EQ(s.integrator, IntegratorKind::TrBdf2);
-  // No preset: the documented defaults (rtol 1e-6, auto -> dopri5 for a soft scene).
-  s = sceneFromText(pendulum("{t_end: 1}")).settings;
-  EXPECT_EQ(s.rtol, 1e-6);
-  EXPECT_EQ(s.integrator, IntegratorKind::DormandPrince);
+  p = runPolicy(sceneFromText(pendulum("{rtol: 1.0e-5, t_end: 1, preset: fast}")));
+  EXPECT_EQ(p.rtol, 1e-5);
+  EXPECT_EQ(p.integrator, IntegratorKind::DormandPrince);
+  p = runPolicy(sceneFromText(pendulum("{t_end: 1, preset: accurate, integrator: trbdf2}")));
+  EXPECT_EQ(p.rtol, 1e-7);
+  EXPECT_EQ(p.integrator, IntegratorKind::TrBdf2);
+  EXPECT_FALSE(p.switch_when_stiff);
+  // No preset: the documented defaults (rtol 1e-6, auto -> dopri5 for a soft
+  // scene, max_step ten output intervals).
+  p = runPolicy(sceneFromText(pendulum("{t_end: 1}")));
+  EXPECT_EQ(p.rtol, 1e-6);
+  EXPECT_EQ(p.integrator, IntegratorKind::DormandPrince);
+  EXPECT_EQ(p.max_step, 10.0 * 0.01);
 }
 
 TEST(Presets, UnknownNameIsALocatedErrorWithSuggestion) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "helpers.h"
+#include "mbs-run/run/run_policy.h"
 
 namespace fc::mbs::test {
 namespace {
@@ -144,7 +145,7 @@ TEST(SceneErrors, SharedSarSceneParses) {
   EXPECT_EQ(m.bodies.size(), 12u);
   EXPECT_EQ(m.joints.size(), 20u);
   EXPECT_EQ(m.nv, 66);
-  EXPECT_EQ(m.settings.integrator, IntegratorKind::DormandPrince);
+  EXPECT_EQ(runPolicy(m).integrator, IntegratorKind::DormandPrince);
 }
 
 }  // namespace

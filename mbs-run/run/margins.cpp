@@ -1,4 +1,4 @@
-#include "mbs-run/monitors/margins.h"
+#include "mbs-run/run/margins.h"
 
 #include <Eigen/Geometry>
 
