@@ -32,8 +32,8 @@ are left out to keep CI short). Checked:
   stays clear of panel 1 (B2-B1 above 0.05 m in phase 1, stowed 0.141 m; above 0 in
   phase 2 until 0.2 s before the R1 latch, when the mid-plane rectangles meet at the
   hinge line);
-- the snubber pads SN8/SN12: 20 mm clear in phase 1 (E holds the corners), they catch the swing-back
-  after the release, compressed by less than half the 10-mm pad;
+- the snubber pads SN8/SN12: 20 mm clear in phase 1 (E holds the corners), never compressed by
+  half the 10-mm pad after the release (with the hinge gap the swing-back does not reach them);
 - the margins are written (docs/file-formats.md): the legs' axial force and Euler load.
 """
 import csv
@@ -145,12 +145,13 @@ if "R1" in latched:
           f"{d21[p1].min():.4f} m (phase 1), {d21[p2].min():.4f} m (phase 2)")
 # The snubber pads (docs/sar-antenna.md, "Hold-down E and snubber pads"): held by E, panel 2's corners stay their
 # 20 mm above the pads through phase 1 (to 1 mm: E holds the corner interfaces themselves); after the release the
-# pads catch the swinging-back corners, compressed far less than half the 10-mm pad (measured 0.12 mm, 57-59 N,
-# 10.68-10.83 s, on the h = 0.025 m model).
+# pads would catch the swinging-back corners, compressed far less than half the 10-mm pad (gap-free: 0.12 mm,
+# 57-59 N at 10.68-10.83 s on the h = 0.025 m model). With the 40-mm hinge-2/3 gap the swing-back stays 19.5 mm
+# above them (measured: the corners' lighter swing, docs/sar-antenna.md "The hinge-2/3 gap"), so no force is
+# required of them here; whether they were struck is printed.
 for c, (force, pen) in pads.items():
     check(pen[t <= 10.0].max() < -0.019, f"pad {c}: phase 1 penetration {pen[t <= 10.0].max():.4f} m (20 mm clear)")
     check(pen.max() < 0.005, f"pad {c}: deepest compression {pen.max():.4f} m")
-check(max(force.max() for force, _ in pads.values()) > 0.0, "the pads catch panel 2's swing-back")
 print("default model: snubber pads " + ", ".join(f"{c} {force.max():.1f} N, {1e3 * pen.max():.2f} mm"
                                                   for c, (force, pen) in pads.items()))
 for b, (c, euler) in legs.items():
