@@ -37,6 +37,7 @@
 #include "fe-prep/build_body.h"
 #include "fe-prep/stress_recovery_data.h"
 #include "feprep_test_support.h"
+#include "lamination_references.h"
 #include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/monitors/stress_recovery_mixed.h"
 
@@ -90,18 +91,8 @@ Physical Curve("root") = {5, 6};
   return path;
 }
 
-Eigen::Matrix3d reducedQ() {
-  const double nu21 = NU12 * E2 / E1, d = 1 - NU12 * nu21;
-  Eigen::Matrix3d Q;
-  Q << E1 / d, NU12 * E2 / d, 0, NU12 * E2 / d, E2 / d, 0, 0, 0, G12;
-  return Q;
-}
-Eigen::Matrix3d reuterT(double deg) {  // laminate -> ply axes, engineering strains
-  const double a = deg * M_PI / 180, c = std::cos(a), s = std::sin(a);
-  Eigen::Matrix3d T;
-  T << c * c, s * s, c * s, s * s, c * c, -c * s, -2 * c * s, 2 * c * s, c * c - s * s;
-  return T;
-}
+Eigen::Matrix3d reducedQ() { return fc::feprep::test::reducedStiffness(E1, E2, G12, NU12); }
+using fc::feprep::test::reuterT;  // laminate -> ply axes, engineering strains
 
 TEST(MixedBodyStress, SkinPliesAndStringerForcesOfImposedStatesAreTheClosedForms) {
   const std::string dir = scratchDir("mixed_stress_closed_forms");
