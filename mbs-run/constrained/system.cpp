@@ -419,9 +419,12 @@ StiffModalPart System::modalSplit(double t, const VectorXd& y) {
   StiffModalPart S;
   const int nq = model_.nq, nv = model_.nv;
   S.v_offset = nq;
+  // Each flexible body's first column among the split's modes, for the force elements below.
+  std::vector<int> first_col(model_.bodies.size(), -1);
   for (std::size_t k = 0; k < model_.bodies.size(); ++k) {
     const Body& b = model_.bodies[k];
     if (b.fixed || b.modes == 0) continue;
+    first_col[k] = int(S.q_index.size());
     for (int j = 0; j < b.modes; ++j) {
       S.q_index.push_back(b.pos_index + 7 + j);
       S.v_index.push_back(nq + b.dof_index + 6 + j);
@@ -451,7 +454,7 @@ StiffModalPart System::modalSplit(double t, const VectorXd& y) {
       Q[b.dof_index + 6 + j] = 0.0;
     }
   }
-  addForceElementSplit(S);
+  addForceElementSplit(first_col, S);
   return S;
 }
 
@@ -462,15 +465,8 @@ StiffModalPart System::modalSplit(double t, const VectorXd& y) {
 // 50 N m s at the crank's root against ~1 kHz modes), and left in the
 // explicit part it holds the step at its stability bound. Elements without
 // modal entries (between rigid frames) stay explicit as before.
-void System::addForceElementSplit(StiffModalPart& S) {
+void System::addForceElementSplit(const std::vector<int>& first_col, StiffModalPart& S) {
   const int n = S.modes(), nv = model_.nv;
-  std::vector<int> first_col(model_.bodies.size(), -1);
-  for (std::size_t k = 0, col = 0; k < model_.bodies.size(); ++k) {
-    const Body& b = model_.bodies[k];
-    if (b.fixed || b.modes == 0) continue;
-    first_col[k] = int(col);
-    col += std::size_t(b.modes);
-  }
   std::vector<VectorXd> g, gq;
   std::vector<double> c, kk;
   for (std::size_t f = 0; f < model_.forces.size(); ++f) {

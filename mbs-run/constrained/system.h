@@ -158,8 +158,9 @@ class System {
                        double applied_power, double stiffening_power, Eigen::VectorXd& ydot) const;
   void factorize();
   // modalSplit's force elements (StiffModalPart::element_*), at the poses
-  // P_ with the mass and constraints factorised.
-  void addForceElementSplit(StiffModalPart& S);
+  // P_ with the mass and constraints factorised; first_col: each flexible
+  // body's first column among S's modes (-1 for the others).
+  void addForceElementSplit(const std::vector<int>& first_col, StiffModalPart& S);
   double penalty() const;
   // Newton passes on the positions (project(), assemble()): frames_only
   // holds the modal coordinates; damped (the assembly's) takes each pass's
