@@ -183,10 +183,15 @@ def load(spec):
                      "without stress_every for this report, or read the envelope (failure_index_peak) it writes"
                      % path)
         for name in asked:
-            if "bodies/%s/failure_index" % name in res:
-                panels.append(Panel(name, res, os.path.join(where, files[name])))
+            body_h5 = os.path.join(where, files[name])
+            # A truss whose section carries a recovery basis has ply failure indices too
+            # (docs/stresses.md, "Beams: ply stresses from the section"): what makes a
+            # panel is its triangles.
+            with h5py.File(body_h5, "r") as b:
+                shell = "mesh/triangles" in b
+            if shell and "bodies/%s/failure_index" % name in res:
+                panels.append(Panel(name, res, body_h5))
             elif "bodies/%s/section_forces" % name in res:
-                body_h5 = os.path.join(where, files[name])
                 trusses.append(Truss(name, res, rod_of(where, files[name]),
                                      joint_axial_force(res, sc, name, body_h5)))
         status = res.attrs["status"]
