@@ -2,7 +2,7 @@
 """The SAR page's model table (docs/sar-antenna.md, "Results"), written from the results files.
 
   v3_table.py --run FILE:LABEL [--run FILE:LABEL ...] [--rigid LABEL] [--phase1-end 10]
-              [--statements] [--body LABEL=PANEL3_BODY_FILE ...]
+              [--statements] [--body LABEL=PANEL3_BODY_FILE ...] [--doc FILE --block NAME]
 
 One markdown row per run: the knee's closest approach to straight in phase 1 (plot_results.py's
 definition), the first impact on hinge 2/3's coplanar stop (time, rate before -> after, how many
@@ -14,6 +14,11 @@ clearance up to 0.2 s before the R1 latch (where panels 1 and 2 meet at the hing
 monitor's idealisation), the largest contact force, the peak Tsai-Wu index (when the run recovered
 stresses), CPU seconds, steps and the integrator. Every figure is read from the file: rerun the
 scenes and this script, and the table follows.
+
+With --doc and --block the table replaces the lines between `<!-- v3_table NAME -->` and
+`<!-- /v3_table NAME -->` in FILE (docs/sar-antenna.md) instead of going to standard output.
+
+With --insert MD the block receives that markdown file as it is (stress_report.py's tables).
 
 With --statements it writes instead the figures the page's point-by-point comparison with the paper
 quotes, one row per run: the first stop impulse, the largest change of panel 3's rate between two
@@ -88,7 +93,11 @@ def row(path, label, phase1_end, rigid_phase2):
         cells.append(f"{l1[0]:.1f} N ({l1[1]:.2f}, {l1[2]}, {l1[3]:.2f} s) / {l2[0]:.1f} N ({l2[1]:.2f}, {l2[2]}, {l2[3]:.2f} s)")
         k10 = int(np.argmin(np.abs(t - phase1_end)))
         cells.append(f"{f['energy/kinetic'][k10]:.2f} J, {f['energy/strain'][k10]:.2f} J")
-        cells.append(f"{a['energy_balance_error']:.1e}")
+        # mbs-run's scale for the balance: the largest kinetic, potential or dissipated energy.
+        scale = max(np.abs(f["energy/kinetic"][()]).max(), np.abs(f["energy/potential"][()]).max(),
+                    f["energy/dissipated"][()].max())
+        err = a["energy_balance_error"]
+        cells.append(f"{err:.1e} J ({err / scale:.1e})")
         if "distances" in f:
             end = (lat["R1"][0] if "R1" in lat else t[-1]) - 0.2
             rows = t <= end
@@ -109,7 +118,7 @@ def row(path, label, phase1_end, rigid_phase2):
 
 HEADER = ["model", "knee minimum", "H23 stop: first impact", "H23 latch", "R1 latch: t, rate", "phase 2",
           "legs' largest compression (x Euler), phase 1 / phase 2", "T, strain at the switch",
-          "energy balance", "smallest clearance", "largest contact force", "peak Tsai-Wu", "CPU"]
+          "energy balance error (of the largest term)", "smallest clearance", "largest contact force", "peak Tsai-Wu", "CPU"]
 
 
 def statements(path, label, phase1_end, body):
@@ -159,31 +168,49 @@ STATEMENT_HEADER = ["model", "first stop impulse", "largest change of omega_3 be
 
 
 def table(header, rows):
-    print("| " + " | ".join(header) + " |")
-    print("|" + "---|" * len(header))
-    for cells in rows:
-        print("| " + " | ".join(cells) + " |")
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    return lines + ["| " + " | ".join(cells) + " |" for cells in rows]
+
+
+def emit(lines, doc, block):
+    if not doc:
+        print("\n".join(lines))
+        return
+    text = open(doc).read()
+    start, end = f"<!-- v3_table {block} -->\n", f"<!-- /v3_table {block} -->"
+    i, j = text.find(start), text.find(end)
+    if i < 0 or j < i:
+        raise SystemExit(f"v3_table.py: {doc} has no block '{start.strip()}' ... '{end}'")
+    with open(doc, "w") as f:
+        f.write(text[:i + len(start)] + "\n".join(lines) + "\n" + text[j:])
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--run", action="append", required=True, help="a results file, as FILE:LABEL")
+    ap.add_argument("--run", action="append", default=[], help="a results file, as FILE:LABEL")
     ap.add_argument("--rigid", help="label of the run whose phase 2 the others are compared with")
     ap.add_argument("--phase1-end", type=float, default=10.0)
     ap.add_argument("--statements", action="store_true", help="the point-by-point figures instead")
     ap.add_argument("--body", action="append", default=[], help="LABEL=FILE: panel 3's body file, for the twist")
+    ap.add_argument("--doc", help="a markdown file whose block --block the table replaces")
+    ap.add_argument("--block", default="models", help="the block's name in --doc")
+    ap.add_argument("--insert", help="put this markdown file (stress_report.py's tables) in the block instead")
     args = ap.parse_args()
     specs = [s.rsplit(":", 1) if ":" in s else (s, s) for s in args.run]
+    if args.insert:
+        emit(open(args.insert).read().rstrip("\n").splitlines(), args.doc, args.block)
+        return
     if args.statements:
         bodies = dict(b.split("=", 1) for b in args.body)
-        table(STATEMENT_HEADER, [statements(p, lab, args.phase1_end, bodies.get(lab)) for p, lab in specs])
+        emit(table(STATEMENT_HEADER, [statements(p, lab, args.phase1_end, bodies.get(lab)) for p, lab in specs]),
+             args.doc, args.block)
         return
     rigid_phase2 = None
     if args.rigid:
         for path, label in specs:
             if label == args.rigid:
                 rigid_phase2 = row(path, label, args.phase1_end, None)[1]
-    table(HEADER, [row(path, label, args.phase1_end, rigid_phase2)[0] for path, label in specs])
+    emit(table(HEADER, [row(path, label, args.phase1_end, rigid_phase2)[0] for path, label in specs]), args.doc, args.block)
 
 
 if __name__ == "__main__":
