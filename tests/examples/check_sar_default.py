@@ -158,4 +158,14 @@ for b, (c, euler) in legs.items():
     check(len(c) == len(t) and abs(euler - 64.93) < 0.05, f"{b}: axial force history and Euler load {euler:.2f} N")
     print(f"default model: leg {b} largest compression {c[t <= 10.0].max():.1f} N (phase 1), "
           f"{c[t > 10.0].max():.1f} N (phase 2), Euler load {euler:.1f} N")
+# The SAR page's table (docs/sar-antenna.md, "Results", written by `make page`) reads this file: its row must
+# carry the latch and the legs' phase-1 compression found above.
+page = subprocess.run([sys.executable, os.path.join(src, "v3_table.py"), "--run", f"{res}:default"],
+                      capture_output=True, text=True, cwd=src)
+cells = [c.strip() for c in (page.stdout.strip().splitlines() or ["|"])[-1].strip("|").split("|")]
+check(page.returncode == 0 and len(cells) == 13, f"v3_table.py: {page.returncode}, {page.stderr.strip()[-200:]}")
+if "R1" in latched and len(cells) == 13:
+    check(cells[4].startswith(f"{latches[latched.index('R1')][0]:.3f} s"), f"page table R1 latch '{cells[4]}'")
+    leg1 = max(c[t <= 10.0].max() for c, _ in legs.values())
+    check(cells[6].startswith(f"{leg1:.1f} N"), f"page table legs '{cells[6]}' (phase 1 {leg1:.1f} N)")
 finish()
