@@ -1,5 +1,7 @@
 #include "mbs-run/monitors/stress_envelope.h"
 
+#include "mbs-run/monitors/stress_recovery_mixed.h"
+
 namespace fc::mbs {
 
 void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eigen::VectorXd>& fields, double t) {
@@ -32,6 +34,11 @@ void StressEnvelope::observe(const BodyStressRecovery& r, const std::vector<Eige
     max_ = max_.cwiseMax(f0);
     min_ = min_.cwiseMin(f0);
   }
+  if (r.beam_part) {
+    const auto first = fields.begin() + static_cast<std::ptrdiff_t>(mixedShellOutputs(r));
+    if (beams_.empty()) beams_.resize(1);
+    beams_[0].observe(*r.beam_part, std::vector<Eigen::VectorXd>(first, fields.end()), t);
+  }
   ++rows_;
 }
 
@@ -53,6 +60,12 @@ std::vector<EnvelopeDataset> StressEnvelope::datasets(const BodyStressRecovery& 
     d.push_back({base + "_max", field, max_});
     d.push_back({base + "_min", field, min_});
   }
+  if (r.beam_part && !beams_.empty())
+    for (EnvelopeDataset& b : beams_[0].datasets(*r.beam_part)) {
+      // section_forces_* are the beams' alone; the rest would clash with the shells'.
+      if (b.name.rfind("section_forces", 0) != 0) b.name = "beam_" + b.name;
+      d.push_back(std::move(b));
+    }
   return d;
 }
 

@@ -8,7 +8,11 @@
 //     and each Hashin mode's largest index;
 //   shells without strengths: per element, ply and component the largest and
 //     smallest ply stress;
-//   beams: per element and component the largest and smallest section force.
+//   beams: per element and component the largest and smallest section force
+//     (beams with a section basis: their plies' failure envelope as shells');
+//   bodies mixing shells and beams: the shells' envelope, then the beams' as a
+//     beam body's (BodyStressRecovery::beam_part), its ply datasets prefixed
+//     beam_ as the mixed body's outputs are.
 #include <Eigen/Dense>
 
 #include <string>
@@ -34,7 +38,8 @@ class StressEnvelope {
   // The datasets to write, in file order: failure_index_peak,
   // failure_index_peak_time, ply_stress_at_peak, hashin_peak (shells with strengths);
   // ply_stress_max, ply_stress_min (shells without); section_forces_max,
-  // section_forces_min (beams). Empty before the first row.
+  // section_forces_min (beams); a mixed body's shells' then its beams'.
+  // Empty before the first row.
   std::vector<EnvelopeDataset> datasets(const BodyStressRecovery& r) const;
 
  private:
@@ -45,6 +50,9 @@ class StressEnvelope {
   Eigen::VectorXd hashin_peak_;
   // The others: componentwise max_ and min_ of the one field.
   Eigen::VectorXd max_, min_;
+  // A mixed body's beams, folded as a beam body's from their outputs (one
+  // element or none; a vector keeps the envelope a value that copies whole).
+  std::vector<StressEnvelope> beams_;
 };
 
 }  // namespace fc::mbs

@@ -217,6 +217,13 @@ std::size_t mixedShellOutputs(const BodyStressRecovery& r) {
   return r.failure_output >= 0 ? 3 : 1;  // ply_stress [, failure_index, hashin] (shellStressRecovery)
 }
 
+const Eigen::VectorXd* sectionForcesField(const BodyStressRecovery& r, const std::vector<Eigen::VectorXd>& fields) {
+  if (fields.size() != r.outputs.size()) return nullptr;
+  if (r.kind == BodyStressRecovery::Kind::Beam) return &fields[0];
+  if (r.beam_part) return &fields[mixedShellOutputs(r)];
+  return nullptr;
+}
+
 std::shared_ptr<const BodyStressRecovery> stressRecovery(const StressRecoveryData& d, const std::string& file) {
   if (!d.hasShell() || !d.hasBeam()) return d.hasBeam() ? beamStressRecovery(d, file) : shellStressRecovery(d, file);
   // A mixed body: its triangles as a shell body's, its beams as a beam body's
@@ -238,6 +245,7 @@ std::shared_ptr<const BodyStressRecovery> stressRecovery(const StressRecoveryDat
   beams.beam_stations = d.beam_stations;
   auto r = std::make_shared<BodyStressRecovery>(*shellStressRecovery(shells, file));
   const auto b = beamStressRecovery(beams, file);
+  r->beam_part = b;
   r->beam_resultants = b->beam_resultants;
   r->section_ply = b->section_ply;
   r->beam_lengths = b->beam_lengths;

@@ -103,6 +103,10 @@ struct BodyStressRecovery {
   // The output holding the stresses that go with the failure index (the
   // envelope's *_at_peak): 0 for shells, the beam's ply_stress otherwise.
   int ply_output = 0;
+  // A body mixing shells and beams (stressRecovery): its beams as a beam
+  // body's recovery, whose outputs are this one's from mixedShellOutputs on,
+  // so that the beams' envelope and peak section moment are a beam body's.
+  std::shared_ptr<const BodyStressRecovery> beam_part;
 
   // fields[i] (outputs[i].size() values, C order) at modal coordinates q.
   void recover(const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>& fields) const;

@@ -3,6 +3,7 @@
 // beams, or both for a body mixing shell and beam regions ("Mixed bodies").
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/stress_data.h"
 #include "mbs-run/monitors/stress_recovery.h"
@@ -21,5 +22,10 @@ std::shared_ptr<const BodyStressRecovery> stressRecovery(const StressRecoveryDat
 // The number of outputs of a mixed recovery that are its shells' (the beams'
 // follow); 0 when the recovery is not mixed.
 std::size_t mixedShellOutputs(const BodyStressRecovery& r);
+
+// The section forces (n_el, 6) among a recovery's fields (recover()): a beam
+// body's first output, a mixed body's beams' first; nullptr for a shell body
+// or fields that do not match the recovery's outputs.
+const Eigen::VectorXd* sectionForcesField(const BodyStressRecovery& r, const std::vector<Eigen::VectorXd>& fields);
 
 }  // namespace fc::mbs

@@ -8,6 +8,7 @@
 #include "mbs-run/mechanics/flexible/modal.h"
 #include "mbs-run/mechanics/flexible/section_forces.h"
 #include "mbs-run/monitors/stress_recovery.h"
+#include "mbs-run/monitors/stress_recovery_mixed.h"
 
 namespace fc::mbs {
 
@@ -62,8 +63,10 @@ void RunSummary::observe(const Model& m, const Sample& s) {
   }
   for (std::size_t k = 0; k < s.bodies.size() && k < m.bodies.size(); ++k) {
     const auto& r = m.bodies[k].stress;
-    if (!r || r->kind != BodyStressRecovery::Kind::Beam || s.bodies[k].stress.size() != r->outputs.size()) continue;
-    const SectionForcePeak at = largestSectionForces(s.bodies[k].stress[0]);
+    // Beam bodies' section forces, and a mixed body's beams' (sectionForcesField).
+    const Eigen::VectorXd* forces = r ? sectionForcesField(*r, s.bodies[k].stress) : nullptr;
+    if (!forces) continue;
+    const SectionForcePeak at = largestSectionForces(*forces);
     if (at.bending_element >= 0 && (!peak_section_moment.found || at.bending > peak_section_moment.value))
       peak_section_moment = {true, at.bending, s.time, m.bodies[k].name, at.bending_element};
   }

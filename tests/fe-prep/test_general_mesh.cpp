@@ -342,13 +342,19 @@ std::vector<double> stiffenedPanelCalculix(const std::string& key) {
 // 64 -> 128 by 0.002 % and 0.02 %; the static deflection 0.4 % and 0.0005 %.
 // Measured (fe-prep 64 against CalculiX 64): f1 -0.09 %, f2 +0.02 %, uz/Fz
 // +0.16 %; tolerance 0.5 %, the 1 % with room for neither side's mesh.
-// Modes 3-10 are printed, not asserted: modes 3, 4, 6 and 10 stay 1.1-1.8 %
-// above CalculiX on the finest meshes, and the bare skin shows the same gaps
-// against CalculiX's S8R and layered C3D20R solid. Not the shell element: on
-// the bare skin fe-prep's DST agrees with a Ritz solution of classical
-// lamination theory with D16, D26 to 0.09 % in all ten modes, and it is both
-// CalculiX models that sit up to 1.6 % below that theory (docs/validation.md);
-// which of the two references is right is left open there.
+// Modes 3-10 are asserted to 2 %, not 1 %, because there the reference is 3-D
+// elasticity and fe-prep's shell is not (docs/validation.md, stiffened-panel
+// row): on the bare skin, CalculiX's fully integrated C3D20 layered solid
+// (rectangular bricks, exact integration and consistent mass: an upper bound
+// of the 3-D eigenvalues, so a finer mesh can only lower it) is already 1.37 %
+// (f4), 0.62, 0.96, 0.84 % (f6, f9, f10) below classical lamination theory
+// (Ritz, converged to 1e-5), and first-order shear theory (Ritz, ritz_skin.py)
+// accounts for only 0.15-0.27 % of it: a ply-level 3-D effect of the +-45
+// plies that no single-layer plate theory has, and CalculiX's S8R (expanded
+// into C3D20R bricks) shares it (-1.46 % at f4). fe-prep follows the shell
+// theory it implements (next test: within 0.2 % of the Ritz in all ten
+// modes), so its gap to CalculiX is that 3-D effect plus the 1 %: measured
+// +0.22 to +1.79 %, bound 2 %.
 TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
   const std::string dir = std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel";
   std::string lam = "laminates:\n  skin: [";
@@ -370,6 +376,8 @@ TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
     std::printf("[   info   ] f%d: fe-prep %.5f Hz, CalculiX %.5f Hz (%+.2f %%)\n", j + 1, f, c, 100 * (f / c - 1));
     if (j < 2) {
       EXPECT_NEAR(f / c, 1.0, 0.005) << "mode " << j + 1;
+    } else {
+      EXPECT_NEAR(f / c, 1.0, 0.02) << "mode " << j + 1;
     }
   }
   const BuildResult stat = runYaml(lib + "body:\n" + regions +
@@ -377,6 +385,37 @@ TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
   const double uz = stat.body.interface("tip").static_compliance(2), c = stiffenedPanelCalculix("compliance 64")[0];
   std::printf("[   info   ] tip uz/Fz: fe-prep %.6e m/N, CalculiX %.6e m/N (%+.2f %%)\n", uz, c, 100 * (uz / c - 1));
   EXPECT_NEAR(uz / c, 1.0, 0.005);
+}
+
+// The same skin without its stringers, the shell theory fe-prep implements:
+// its ten frequencies against a Ritz solution of classical lamination theory
+// for the cantilever plate with D16, D26 (Legendre degree 18 per direction,
+// converged to 1e-5; ritz_skin.py, the fixture's ritz_clt_skin row). DST
+// converges to it at O(h^2) from above and its transverse shear puts it below
+// by 0.1-0.2 % once converged (first-order shear theory's Ritz: -0.02 to
+// -0.27 %); measured on this 64 x 40 mesh -0.03 to +0.17 % (f9, f10 still
+// converging: 64 -> 128 moves f9 by 0.17 %), bound 0.5 %. The
+// same skin's 3-D solid is up to 1.37 % lower (the test above): that is the
+// shell theory's omission, not the element's.
+TEST(GeneralMesh, StiffenedPanelSkinAgainstLaminationTheory) {
+  const std::string dir = std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel";
+  std::string lam = "laminates:\n  skin: [";
+  const int angles[8] = {0, 45, -45, 90, 90, -45, 45, 0};
+  for (int k = 0; k < 8; ++k)
+    lam += std::string(k ? ", " : "") + "{material: im6, thickness: 0.00025, angle_deg: " + std::to_string(angles[k]) + "}";
+  const std::string lib = "materials:\n  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, "
+                          "G23: 3.6e9, nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}\n" + lam + "]\n";
+  const BuildResult modal = runYaml(lib + "body:\n  mesh: {file: " + dir + "/panel_64.msh}\n  mass: consistent\n  regions:\n"
+                                    "    skin: {shell: {laminate: skin, element: dst, axis: [1, 0, 0]}}\n"
+                                    "  reference: {clamp: [root]}\n  ignore: [tip, stringers]\n  modes: 10\n");
+  const std::vector<double> ritz = stiffenedPanelCalculix("ritz_clt_skin 0");
+  ASSERT_EQ(ritz.size(), 10u);
+  ASSERT_EQ(modal.body.modeCount(), 10);
+  for (int j = 0; j < 10; ++j) {
+    const double f = modal.body.frequencies_hz(j), r = ritz[static_cast<std::size_t>(j)];
+    std::printf("[   info   ] skin f%d: fe-prep %.5f Hz, Ritz CLT %.5f Hz (%+.3f %%)\n", j + 1, f, r, 100 * (f / r - 1));
+    EXPECT_NEAR(f / r, 1.0, 0.005) << "mode " << j + 1;
+  }
 }
 
 }  // namespace

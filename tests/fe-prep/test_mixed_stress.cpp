@@ -38,6 +38,8 @@
 #include "fe-prep/stress_recovery_data.h"
 #include "feprep_test_support.h"
 #include "lamination_references.h"
+#include "mbs-run/mechanics/flexible/section_forces.h"
+#include "mbs-run/monitors/stress_envelope.h"
 #include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/monitors/stress_recovery_mixed.h"
 
@@ -201,6 +203,71 @@ TEST(MixedBodyStress, BodyFileRoundTripsAndTheMixedRecoveryIsTheShellsAndTheBeam
   for (std::size_t i = 0; i < fb.size(); ++i) EXPECT_EQ(fm[fs.size() + i], fb[i]) << mixed->outputs[fs.size() + i].name;
   EXPECT_GT(fm[0].cwiseAbs().maxCoeff(), 0.0);
   EXPECT_GT(fm.back().cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(MixedBodyStress, BeamEnvelopeAndPeakSectionMomentAreTheBeamBodys) {
+  // The same rows folded by the mixed body's envelope and by the beam-only
+  // body's (the same beam elements, the same modal coordinates): the beams'
+  // section_forces_max/min and the peak section moment must be the beam body's
+  // exactly (the same numbers through the same max/min), and the shells'
+  // envelope the shell body's; nothing else may appear.
+  const std::string dir = scratchDir("mixed_stress_envelope");
+  const BuildResult b = runYaml(mixedPanelYaml(writePanelGeo(dir)), "<mixed>");
+  const StressRecoveryData& d = b.body.stress;
+  ASSERT_TRUE(d.hasShell() && d.hasBeam());
+  const int nm = static_cast<int>(d.shell_strains.cols());
+  const long nb = d.beam_resultants.rows() / 6, nt = d.centroids.rows() - nb;
+  StressRecoveryData beams;
+  beams.centroids = d.centroids.bottomRows(nb);
+  beams.beam_resultants = d.beam_resultants;
+  StressRecoveryData shells = d;
+  shells.centroids = d.centroids.topRows(nt);
+  shells.beam_resultants.resize(0, 0);
+  const auto mixed = mbs::stressRecovery(d, "<mixed>");
+  const auto shell = mbs::shellStressRecovery(shells), beam = mbs::beamStressRecovery(beams);
+  mbs::StressEnvelope em, es, eb;
+  // Rows of different sign and mode mix, so that max and min come from different rows.
+  double peak_mixed = 0, peak_beam = 0;
+  long el_mixed = -1, el_beam = -1;
+  for (int row = 0; row < 5; ++row) {
+    Eigen::VectorXd q(nm);
+    for (int i = 0; i < nm; ++i) q(i) = std::sin(1.3 * row + 0.7 * i) * (1.0 + 0.1 * i);
+    std::vector<Eigen::VectorXd> fm, fs, fb;
+    mixed->recover(q, fm);
+    shell->recover(q, fs);
+    beam->recover(q, fb);
+    const double t = 0.1 * row;
+    em.observe(*mixed, fm, t);
+    es.observe(*shell, fs, t);
+    eb.observe(*beam, fb, t);
+    const Eigen::VectorXd* sm = mbs::sectionForcesField(*mixed, fm);
+    const Eigen::VectorXd* sb = mbs::sectionForcesField(*beam, fb);
+    ASSERT_NE(sm, nullptr);
+    ASSERT_NE(sb, nullptr);
+    EXPECT_EQ(mbs::sectionForcesField(*shell, fs), nullptr);
+    const mbs::SectionForcePeak pm = mbs::largestSectionForces(*sm), pb = mbs::largestSectionForces(*sb);
+    if (pm.bending > peak_mixed) peak_mixed = pm.bending, el_mixed = pm.bending_element;
+    if (pb.bending > peak_beam) peak_beam = pb.bending, el_beam = pb.bending_element;
+  }
+  EXPECT_GT(peak_beam, 0.0);
+  EXPECT_EQ(peak_mixed, peak_beam);
+  EXPECT_EQ(el_mixed, el_beam);
+  const auto dm = em.datasets(*mixed), ds = es.datasets(*shell), db = eb.datasets(*beam);
+  ASSERT_EQ(dm.size(), ds.size() + db.size());
+  for (std::size_t i = 0; i < ds.size(); ++i) {
+    EXPECT_EQ(dm[i].name, ds[i].name);
+    EXPECT_EQ(dm[i].values, ds[i].values) << ds[i].name;
+  }
+  ASSERT_EQ(db.size(), 2u);  // no section basis: section_forces_max, section_forces_min
+  for (std::size_t i = 0; i < db.size(); ++i) {
+    const mbs::EnvelopeDataset& m = dm[ds.size() + i];
+    EXPECT_EQ(m.name, db[i].name);
+    EXPECT_EQ(m.dims, db[i].dims);
+    EXPECT_EQ(m.values, db[i].values) << db[i].name;
+  }
+  EXPECT_EQ(db[0].name, "section_forces_max");
+  EXPECT_EQ(db[1].name, "section_forces_min");
+  EXPECT_GT((db[0].values - db[1].values).maxCoeff(), 0.0);  // the rows differ: max and min are not one row
 }
 
 }  // namespace
