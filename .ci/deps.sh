@@ -12,6 +12,11 @@ PKGS=(cmake g++ make pkg-config
 # --with-paraview (what CI uses, .ci/test.sh): pvpython, so that the test loading
 # BODY.xdmf and the animation in ParaView runs instead of being skipped
 # (python3-paraview pulls in paraview, about 0.5 GB).
+# --with-openblas: serial OpenBLAS, for fe-prep built with -DFLEXCOMP_OPENBLAS=ON
+# (it links the library itself). Installing it in auto mode also makes it the
+# system's libblas.so.3 for every program: set that alternative by hand first
+# (update-alternatives --set) to keep the reference BLAS elsewhere.
+# docs/benchmarks.md, fe-prep against CalculiX.
 # --with-slurm: a Slurm controller, node daemon and munge, so that the sampling study's
 # Slurm route runs end to end in tests/examples/check_study_executors.py (it starts a
 # private controller on localhost; without these packages the test runs the array's
@@ -20,6 +25,7 @@ for arg in "$@"; do
   case "$arg" in
     --with-paraview) PKGS+=(python3-paraview) ;;
     --with-slurm) PKGS+=(slurmctld slurmd slurm-client munge) ;;
+    --with-openblas) PKGS+=(libopenblas0-serial) ;;
   esac
 done
 missing=()

@@ -45,6 +45,15 @@ lock=${BIGRUN_LOCK:-}
 reductions=${REDUCTIONS:-free craig_bampton}
 if [ -n "${KEEP:-}" ]; then work=$KEEP; mkdir -p "$work"; else work=$(mktemp -d); trap 'rm -rf "$work"' EXIT; fi
 export OMP_NUM_THREADS=1 FLEXCOMP_QUIET=1
+# Both codes on the same BLAS: fe-prep links serial OpenBLAS when it is
+# installed (CMake option FLEXCOMP_OPENBLAS); Debian's ccx is linked to the
+# system's libblas.so.3 (the reference BLAS by default) and then gets the same
+# OpenBLAS by LD_PRELOAD. Without OpenBLAS both run on the system's BLAS.
+blas=$(ldd "$feprep" | awk '/libopenblas/ { print $3; exit }')
+ccx_env=(env)
+[ -n "$blas" ] && ccx_env=(env LD_PRELOAD="$blas")
+echo "BLAS: ${blas:-system libblas.so.3} (both codes)"
+echo
 
 # "wall_s cpu_s peak_MB" of a command run in directory $1, stdout to $2.
 timed() {
@@ -122,7 +131,7 @@ for dof in "${sizes[@]}"; do
       else
         cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" --craig-bampton "$radius" | awk '{print $(NF-2)}')
       fi
-      read -r c_wall c_cpu c_mem <<< "$(timed "$d" "$d/c.txt" "$big_ccx" ccx -i c)"
+      read -r c_wall c_cpu c_mem <<< "$(timed "$d" "$d/c.txt" "$big_ccx" "${ccx_env[@]}" ccx -i c)"
       # Eigenvalue table of the .dat: the first step's modes (free: skip the 6 rigid ones).
       cf=$(awk -v red="$red" '/E I G E N V A L U E   O U T P U T/ { on++ } /P A R T I C/ { on = (on == 1 ? -1 : on) }
         on == 1 && $1 ~ /^[0-9]+$/ && NF == 5 { f[$1] = $4 }
