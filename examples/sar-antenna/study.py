@@ -93,7 +93,7 @@ CB_BASE = dict(tri=0.025, modes=8, truss=2, rtol=1e-6, integ="dopri5", preset=No
 # mesh instead of a second fine basis). Its own mesh error can be measured against one finer mesh,
 # CB_CHECK_MESH (`--check-mesh H`), run without the scene's contact monitor (an output: distances; it does not
 # act on the dynamics, and at this mesh it would cost more than the dynamics). Graded from h = 0.1, h = 0.00625
-# holds 9.2e5 DOF per panel, and fe-prep needs several GB and about ten minutes of CPU for each
+# holds 9.2e5 and 8.2e5 DOF (panels 2, 3): fe-prep needs 4.0 and 3.4 GB and 333 and 241 s of CPU
 # (docs/benchmarks.md, fe-prep Craig-Bampton memory): the check mesh's two panels are made one at a time,
 # after the other meshes (make_all_panels). None (the default): the sequence's tail estimates the reference's
 # mesh error instead.
