@@ -90,10 +90,13 @@ CB_GAP = 0.01  # between split footprints: their outlines are mesh lines, and he
 CB_NOT_BOUNDARY = ("H23",)
 CB_BASE = dict(tri=0.025, modes=8, truss=2, rtol=1e-6, integ="dopri5", preset=None)
 # The reference keeps the base's 8 modes (its mode error is estimated from the mode sequence at the base
-# mesh instead of a second fine basis). Its own mesh error could be measured against one finer mesh,
-# CB_CHECK_MESH, run without the scene's contact monitor (an output: distances; it does not act on the
-# dynamics). None: graded from h = 0.1, h = 0.00625 has ~300 000 triangles per panel and fe-prep's
-# Craig-Bampton solve passed 17 GB on it (the shared 24 GB machine); the sequence's tail estimates it.
+# mesh instead of a second fine basis). Its own mesh error can be measured against one finer mesh,
+# CB_CHECK_MESH (`--check-mesh H`), run without the scene's contact monitor (an output: distances; it does not
+# act on the dynamics, and at this mesh it would cost more than the dynamics). Graded from h = 0.1, h = 0.00625
+# holds 9.2e5 and 8.2e5 DOF (panels 2, 3): fe-prep needs 4.0 and 3.4 GB and 333 and 241 s of CPU
+# (docs/benchmarks.md, fe-prep Craig-Bampton memory): the check mesh's two panels are made one at a time,
+# after the other meshes (make_all_panels). None (the default): the sequence's tail estimates the reference's
+# mesh error instead.
 CB_REF = dict(CB_BASE, tri=0.0125, rtol=1e-7)
 CB_CHECK_MESH = None
 CB_MESHES = [0.1, 0.05, 0.025, 0.0125]
@@ -122,6 +125,14 @@ def use_model(model):
     if model == "cb":
         BASE, REF, MESHES, PANEL_MODES = CB_BASE, CB_REF, CB_MESHES, CB_PANEL_MODES
         MAX_MODES = max(PANEL_MODES)
+
+
+def set_check_mesh(h):
+    """The reference's check mesh (see CB_CHECK_MESH): a finer element size than the reference's, or None."""
+    global CB_CHECK_MESH
+    if h is not None and not 0 < h < CB_REF["tri"]:
+        sys.exit(f"study.py: --check-mesh {h:g}: expected an element size below the reference's {CB_REF['tri']:g} m")
+    CB_CHECK_MESH = h
 
 
 def is_cb(args):
@@ -300,6 +311,19 @@ def make_panels(args, tri, cb_modes=None):
     return out
 
 
+def make_all_panels(args, keys):
+    """The Craig-Bampton panels of every (mesh, modes) key: args.jobs fe-prep runs at a time, but the check
+    mesh's (CB_CHECK_MESH, several GB each) alone, one after the other, so that two of them never share the
+    machine's memory."""
+    small = [k for k in keys if k[0] != CB_CHECK_MESH]
+    with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:  # the finest take fe-prep minutes
+        panels = dict(zip(small, pool.map(lambda k: make_panels(args, k[0], k[1]), small)))
+    for k in keys:
+        if k[0] == CB_CHECK_MESH:
+            panels[k] = make_panels(args, k[0], k[1])  # both panels of the key, one fe-prep at a time
+    return panels
+
+
 def base_scene(args):
     """The isotropic flexible scene; the study changes only body files, modes and solver settings."""
     iso = os.path.join(HERE, "sar-isotropic.yaml")
@@ -441,8 +465,12 @@ def main():
                     help="another study's output folder (its summary.csv): its Pareto front is drawn beside this one")
     ap.add_argument("--fe-prep", help="fe-prep executable (default: BUILD/fe-prep/fe-prep)")
     ap.add_argument("--mbs-run", help="mbs-run executable (default: BUILD/mbs-run/mbs-run)")
+    ap.add_argument("--check-mesh", type=float, default=CB_CHECK_MESH, metavar="H",
+                    help="--model cb: measure the reference's mesh error against this finer element size (e.g. "
+                         "0.00625: two fe-prep runs of ~9e5 DOF, several GB each, made one at a time)")
     args = ap.parse_args()
     use_model(args.hinges)
+    set_check_mesh(args.check_mesh)
     args.out, args.bodies = os.path.abspath(args.out), os.path.abspath(args.bodies)
     # The repository's docs/ change only when asked: a user's study stays in their folder.
     if args.doc is None:
@@ -463,8 +491,7 @@ def main():
     if is_cb(args):  # a Craig-Bampton basis per (mesh, fixed-interface modes)
         keys = sorted({(c["tri"], c["modes"]) for _, c in runs} | {(c["tri"], c["p3"]) for _, c in runs if "p3" in c},
                       key=lambda k: (k[0], str(k[1])))
-        with cf.ThreadPoolExecutor(max_workers=args.jobs) as pool:  # the finest take fe-prep minutes
-            panels = dict(zip(keys, pool.map(lambda k: make_panels(args, k[0], k[1]), keys)))
+        panels = make_all_panels(args, keys)
     else:
         panels = {tri: make_panels(args, tri) for tri in sorted({c["tri"] for _, c in runs})}
     scene0, scene_src = base_scene(args)
@@ -604,7 +631,8 @@ def measured_commit(args):
 
 def write_doc(args, runs, unique, res, ref, scene_src):
     R = lambda c: res[run_name(c)]  # noqa: E731
-    conv = [c for g, c in runs if g == "convergence"]
+    # (cb: the check mesh too, the measured distance of the reference from a finer mesh)
+    conv = [c for g, c in runs if g == "convergence" or (g == "mesh check" and c["tri"] == CB_CHECK_MESH)]
     # The reference's uncertainty: its distance to the next-finest runs, or the scatter between successive
     # fine meshes if that is larger (the mesh does not converge monotonically, see the doc).
     scatter = [errors(R(dict(BASE, tri=a)), R(dict(BASE, tri=b)), args.t_cut)
@@ -1086,6 +1114,19 @@ def cb_convergence_text(args, R):
         q = d[-2] / d[-1] if d[-1] > 0 else np.inf
         tails.append(sum(later) + (d[-1] / (q - 1) if q > 1 else np.inf))
     total = tails[0] + tails[1]
+    if CB_CHECK_MESH:
+        # The check measured against what the sequence without it predicted (the last step divided by the last
+        # ratio, and its geometric tail) and the order of convergence the steps imply, log2 of the ratio per halving.
+        q0 = mesh_d[-3] / mesh_d[-2]
+        order = [np.log2(a / b) for a, b in zip(mesh_d[:-1], mesh_d[1:])]
+        L.append(f"The check of the reference's mesh (h = {REF['tri']:g} m against h = {CB_CHECK_MESH:g} m, base model "
+                 f"at rtol {BASE['rtol']:.0e}, both without the contact monitor): {fmt(mesh_d[-1])} rad in R3 before "
+                 f"the toggle. The sequence without the check predicted {fmt(mesh_d[-2] / q0)} rad for this step "
+                 f"(its last step {fmt(mesh_d[-2])} rad divided by its last ratio {q0:.2f}) and estimated the "
+                 f"reference's whole mesh error at {fmt(mesh_d[-2] / (q0 - 1))} rad (the same step continued "
+                 f"geometrically); measured, the step's ratio is {mesh_d[-2] / mesh_d[-1]:.2f}: an order of "
+                 f"convergence in h of {order[-1]:.2f} (log2 of the ratio), after "
+                 + ", ".join(f"{o:.2f}" for o in order[:-1]) + " at the coarser halvings.\n")
     L.append(f"The reference (h = {REF['tri']:g} m) is {fmt(conv)} rad in R3 before alignment from the next-coarser "
              + (f"mesh and {fmt(mesh_d[-1])} rad from the next-finer one (h = {CB_CHECK_MESH:g} m)" if CB_CHECK_MESH
                 else "mesh") + ". Its remaining error "
@@ -1255,7 +1296,7 @@ def describe(c, ref):
              "truss": "truss modes"}
     for k, v in names.items():
         diff = [d.replace(k + " ", v + " ") for d in diff]
-    return ", ".join(diff)
+    return ", ".join(diff) + ("" if monitored(c) else " (no monitor)")
 
 
 if __name__ == "__main__":
