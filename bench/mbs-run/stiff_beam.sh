@@ -47,7 +47,8 @@ EOT
       status=$(sed -n 's/^  status: \([a-z]*\).*/\1/p' "$OUT/run.log")
       counts=$(sed -n 's/^  integrator [^:]*: \([0-9]*\) steps, \([0-9]*\) rejected, \([0-9]*\) evaluations, \([0-9]*\) projections.*/\1 | \2 | \3 | \4/p' "$OUT/run.log")
       cpu=$(sed -n 's/^  CPU \([0-9.e+-]*\) s.*/\1/p' "$OUT/run.log")
-      rss=$(awk '{printf "%.0f", $1 / 1024}' "$OUT/rss" 2>/dev/null || echo -)
+            # The last line: a run stopped at the limit has time's "Command terminated" line first.
+      rss=$(awk 'END {printf "%.0f", $1 / 1024}' "$OUT/rss" 2>/dev/null || echo -)
       pos=-
       if [ "$status" = completed ] || [ "$status" = inaccurate ]; then
         rows=$(h5ls "$OUT/run.h5/time" | sed -n 's/.*{\([0-9]*\).*/\1/p')
