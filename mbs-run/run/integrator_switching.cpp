@@ -10,17 +10,6 @@
 
 namespace fc::mbs {
 
-namespace {
-// `imex`'s tableau by tolerance (docs/mbs-run.md, Integrators): order 4 from
-// rtol 1e-5 down, where its longer steps pay for its six stages (stiff beam
-// pendulum at rtol 1e-6: 129 107 evaluations against ARK3(2)'s 177 108),
-// order 3 above (rtol 1e-4: 14 192 against 27 373).
-std::unique_ptr<Integrator> makeImex(Rhs f, StiffPart stiff, const Tolerances& tol) {
-  return tol.rtol <= 1e-5 ? makeImexArk4(std::move(f), std::move(stiff), tol)
-                          : makeImexArk3(std::move(f), std::move(stiff), tol);
-}
-}  // namespace
-
 IntegratorSwitching::IntegratorSwitching(const RunPolicy& policy, Rhs f, StiffPart stiff, int size)
     : policy_(policy), f_(std::move(f)), stiff_(std::move(stiff)), tol_(policy.tolerances(size)) {
   if (policy.integrator == IntegratorKind::TrBdf2) {
