@@ -52,10 +52,15 @@ bool IntegratorSwitching::switchIfStiff(double t, const Eigen::VectorXd& y, std:
   for (int j = 0; j < split.modes(); ++j)
     rate_scale[split.v_index[j]] = 1.0 / std::max(1.0, std::sqrt(std::max(split.stiffness[j], 0.0)));
   const StiffPart stiff = stiff_;
-  const MethodFactory candidate = [&](Rhs counted) {
-    return has_modes ? makeImex(counted, stiff, tol_) : makeTrBdf2(counted, tol_);
+  const MethodFactory candidate = [&](Rhs counted, long* renewals) {
+    const StiffPart counted_stiff = [stiff, renewals](double ts, const Eigen::VectorXd& ys) {
+      ++*renewals;
+      return stiff(ts, ys);
+    };
+    return has_modes ? makeImex(counted, counted_stiff, tol_) : makeTrBdf2(counted, tol_);
   };
-  const SwitchTrial trial = trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h, rate_scale);
+  const SwitchTrial trial =
+      trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h, trialCosts(int(y.size()), split), rate_scale);
   if (!trial.implicit_better) {
     // Tried again after 2^k windows (k the declines so far in the segment):
     // a disagreement often comes from a transient (high modes ringing after
