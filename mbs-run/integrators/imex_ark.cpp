@@ -337,4 +337,8 @@ std::unique_ptr<Integrator> makeImexArk4(Rhs f, StiffPart stiff, const Tolerance
   return std::make_unique<ImexArk>(ark436(), "imex", std::move(f), std::move(stiff), tol);
 }
 
+std::unique_ptr<Integrator> makeImex(Rhs f, StiffPart stiff, const Tolerances& tol) {
+  return makeImexArk4(std::move(f), std::move(stiff), tol);
+}
+
 }  // namespace fc::mbs

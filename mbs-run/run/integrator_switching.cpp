@@ -10,17 +10,6 @@
 
 namespace fc::mbs {
 
-namespace {
-// `imex`'s tableau by tolerance (docs/mbs-run.md, Integrators): order 4 from
-// rtol 1e-5 down, where its longer steps pay for its six stages (stiff beam
-// pendulum at rtol 1e-6: 129 107 evaluations against ARK3(2)'s 177 108),
-// order 3 above (rtol 1e-4: 14 192 against 27 373).
-std::unique_ptr<Integrator> makeImex(Rhs f, StiffPart stiff, const Tolerances& tol) {
-  return tol.rtol <= 1e-5 ? makeImexArk4(std::move(f), std::move(stiff), tol)
-                          : makeImexArk3(std::move(f), std::move(stiff), tol);
-}
-}  // namespace
-
 IntegratorSwitching::IntegratorSwitching(const RunPolicy& policy, Rhs f, StiffPart stiff, int size)
     : policy_(policy), f_(std::move(f)), stiff_(std::move(stiff)), tol_(policy.tolerances(size)) {
   if (policy.integrator == IntegratorKind::TrBdf2) {
@@ -63,10 +52,15 @@ bool IntegratorSwitching::switchIfStiff(double t, const Eigen::VectorXd& y, std:
   for (int j = 0; j < split.modes(); ++j)
     rate_scale[split.v_index[j]] = 1.0 / std::max(1.0, std::sqrt(std::max(split.stiffness[j], 0.0)));
   const StiffPart stiff = stiff_;
-  const MethodFactory candidate = [&](Rhs counted) {
-    return has_modes ? makeImex(counted, stiff, tol_) : makeTrBdf2(counted, tol_);
+  const MethodFactory candidate = [&](Rhs counted, long* renewals) {
+    const StiffPart counted_stiff = [stiff, renewals](double ts, const Eigen::VectorXd& ys) {
+      ++*renewals;
+      return stiff(ts, ys);
+    };
+    return has_modes ? makeImex(counted, counted_stiff, tol_) : makeTrBdf2(counted, tol_);
   };
-  const SwitchTrial trial = trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h, rate_scale);
+  const SwitchTrial trial =
+      trialImplicit(f_, candidate, tol_, t, y, kTrialSteps * h, trialCosts(int(y.size()), split), rate_scale);
   if (!trial.implicit_better) {
     // Tried again after 2^k windows (k the declines so far in the segment):
     // a disagreement often comes from a transient (high modes ringing after

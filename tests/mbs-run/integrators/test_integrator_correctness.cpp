@@ -11,6 +11,7 @@
 #include "helpers.h"
 #include "mbs-run/integrators/integrator.h"
 #include "mbs-run/run/simulation.h"
+#include "mbs-run/run/switch_trial.h"
 #include "mbs-run/constrained/system.h"
 
 namespace fc::mbs::test {
@@ -369,6 +370,28 @@ TEST(ImexArk, FourthOrderToleranceProportional) {
   EXPECT_LT(double(b.steps) / a.steps, 8.0);
 }
 
+// `imex` runs the fourth-order pair at every tolerance (`makeImex`): on the
+// interface damper's scene (bench/mbs-run/interface_damper.sh, rtol 1e-4) the
+// third-order pair ended with an energy balance error of 1.2e-3 of the largest
+// energy, all of it lost after the latch in the latched arm's 16 Hz ringing,
+// against 4.1e-5 for the fourth-order pair, at half the evaluations
+// (docs/mbs-run.md, "Why order 4 for imex"). Checked as FixedStepOrders does:
+// the error ratio at h = 0.04 / 0.02 gives order 4 within 0.3, at a
+// tolerance where the third-order pair was chosen before.
+TEST(ImexArk, ImexIsTheFourthOrderPairAtEveryTolerance) {
+  const ForcedOscillator p{4.0, 0.4};
+  auto errorAt = [&](double h) {
+    Tolerances tol;
+    tol.rtol = 1e-4;
+    tol.atol = 1e3;  // loose enough not to act: the step is max_step
+    tol.max_step = h;
+    return runOscillator(makeImex(p.rhs(), p.stiff(), tol), 2.0).err;
+  };
+  const double order = std::log2(errorAt(0.04) / errorAt(0.02));
+  std::printf("[   info   ] imex at rtol 1e-4, h = 0.04 / 0.02: order %.2f\n", order);
+  EXPECT_NEAR(order, 4.0, 0.3);
+}
+
 // On a stiff undamped modal oscillator the IMEX method is stable at any step
 // (L-stable implicit part) but does not reach a large-step regime: once the
 // mode rings at the level of the tolerance the error estimate keeps
@@ -480,5 +503,56 @@ TEST(ImexArk3, DamperElementImplicitStableAndRight) {
   EXPECT_TRUE(!std::isfinite(err_exp) || steps_exp > 10 * steps_imp);
 }
 
+
+// `auto`'s trial weighs work by operation counts from the model's sizes
+// (TrialCosts), written out here: an evaluation (2/3) nv^3 + 2 nv^2, an
+// attempted IMEX step (2/3) m^3 + 2 m^2 nm + 6 (2 m^2 + 4 nv m), a split
+// renewal (2/3) nv^3 + 2 m nv^2 (m = nm + ne); TR-BDF2's step (2/3) n^3 + 6 n^2.
+TEST(SwitchTrial, CostsAreTheOperationCounts) {
+  const CoupledDamperOscillator p;
+  const StiffModalPart S = p.stiff(true)(0.0, Eigen::VectorXd::Zero(4));  // nm 2, ne 1, nv 2
+  const TrialCosts c = trialCosts(4, S);
+  EXPECT_DOUBLE_EQ(c.evaluation, 2.0 / 3.0 * 8 + 2.0 * 4);
+  EXPECT_DOUBLE_EQ(c.attempted_step, 2.0 / 3.0 * 27 + 2.0 * 9 * 2 + 6.0 * (2.0 * 9 + 4.0 * 2 * 3));
+  EXPECT_DOUBLE_EQ(c.split_renewal, 2.0 / 3.0 * 8 + 2.0 * 3 * 4);
+  const TrialCosts r = trialCosts(10, StiffModalPart{});  // no modes: TR-BDF2, nv = (10 - 2) / 2
+  EXPECT_DOUBLE_EQ(r.evaluation, 2.0 / 3.0 * 64 + 2.0 * 16);
+  EXPECT_DOUBLE_EQ(r.attempted_step, 2.0 / 3.0 * 1000 + 6.0 * 100);
+  EXPECT_DOUBLE_EQ(r.split_renewal, 0.0);
+}
+
+// The same trial twice decides the same way with the same work to the last
+// bit (it used to compare measured CPU times), and the work is the counts
+// weighted as TrialCosts says. The damper-coupled modes (c |g|^2 = 1e4 1/s)
+// hold Dormand-Prince at its stability bound; IMEX treats them implicitly.
+TEST(SwitchTrial, DecisionIsCountedNotTimed) {
+  const CoupledDamperOscillator p;
+  Tolerances tol;
+  tol.rtol = 1e-4;
+  tol.atol = 1e-8;
+  const StiffPart stiff = p.stiff(true);
+  const Eigen::Vector4d y0(0.0, 0.0, 1.0, 1.0);  // on the exact solution (sin t, sin t) at t = 0
+  const TrialCosts costs = trialCosts(4, stiff(0.0, y0));
+  const MethodFactory candidate = [&](Rhs counted, long* renewals) {
+    const StiffPart counted_stiff = [stiff, renewals](double t, const Eigen::VectorXd& y) {
+      ++*renewals;
+      return stiff(t, y);
+    };
+    return makeImex(counted, counted_stiff, tol);
+  };
+  const SwitchTrial a = trialImplicit(p.rhs(), candidate, tol, 0.0, y0, 0.5, costs);
+  const SwitchTrial b = trialImplicit(p.rhs(), candidate, tol, 0.0, y0, 0.5, costs);
+  std::printf("[   info   ] %s: %s\n", a.implicit_better ? "imex" : "dopri5 kept", a.describe().c_str());
+  EXPECT_EQ(a.implicit_better, b.implicit_better);
+  EXPECT_EQ(a.explicit_work, b.explicit_work);
+  EXPECT_EQ(a.implicit_work, b.implicit_work);
+  EXPECT_EQ(a.explicit_work, double(a.explicit_evaluations));
+  EXPECT_DOUBLE_EQ(a.implicit_work, a.implicit_evaluations + (a.implicit_attempts * costs.attempted_step +
+                                                             a.implicit_split_renewals * costs.split_renewal) /
+                                                                costs.evaluation);
+  EXPECT_GT(a.implicit_split_renewals, 0);
+  // Dormand-Prince crawls at ~3e-4 s over the 0.5-s window; IMEX does not: the switch is taken.
+  EXPECT_TRUE(a.implicit_better);
+}
 }  // namespace
 }  // namespace fc::mbs::test
