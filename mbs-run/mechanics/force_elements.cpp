@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mbs-run/mechanics/flexible/flexible_body.h"
 #include "mbs-run/mechanics/flexible/modal.h"
@@ -148,16 +149,34 @@ void contact(const Context& c, const ForceElement& fe, ForceSums& s) {
     const Body &bi = c.model.bodies[fe.body_i], &bj = c.model.bodies[fe.body_j];
     if (!bi.fixed) s.Q.segment(bi.dof_index, bi.nv()) -= cs.force * cs.grad_i.transpose();
     if (!bj.fixed) s.Q.segment(bj.dof_index, bj.nv()) -= cs.force * cs.grad_j.transpose();
-    s.dissipation += (cs.force - cs.elastic) * cs.rate;
+    s.dissipation += cs.dissipation;
   }
-  if (c.potential) s.potential += cs.elastic * cs.penetration / (fe.exponent + 1.0);
+  if (c.potential) s.potential += cs.potential;
 }
 
 }  // namespace
 
-ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P) {
+namespace {
+
+// Hunt-Crossley / Lankarani-Nikravesh at penetration d and rate d_dot (set
+// in cs): F = max(0, k d^n (1 + alpha d_dot)) while touching, and the power
+// and potential that go with it.
+void applyLaw(const ForceElement& fe, ContactState& cs) {
+  if (!cs.touching) return;
+  cs.elastic = fe.stiffness * std::pow(cs.penetration, fe.exponent);
+  // Never pulling: a fast separation (alpha d_dot < -1) leaves the hysteresis
+  // term larger than the elastic one; the force is then 0, not negative.
+  cs.force = std::max(0.0, cs.elastic * (1.0 + fe.hysteresis * cs.rate));
+  cs.dissipation = (cs.force - cs.elastic) * cs.rate;
+  cs.potential = cs.elastic * cs.penetration / (fe.exponent + 1.0);
+}
+
+// Point s_i (shapes sh_i) of body i against the plane of body j, the point
+// standing `offset` off it (a panel edge's half thickness).
+ContactState pointPlane(const ForceElement& fe, const std::vector<BodyPose>& P, const Vector3d& s_i,
+                        const PointShapes& sh_i, double offset) {
   const BodyPose &a = P[fe.body_i], &b = P[fe.body_j];
-  const Attached ap = attachedPoint(a, fe.point_i, fe.shapes_i.psi);
+  const Attached ap = attachedPoint(a, s_i, sh_i.psi);
   const Attached bq = attachedPoint(b, fe.point_j, fe.shapes_j.psi);
   const bool flex_j = b.modal.size() > 0 && fe.shapes_j.theta.cols() == b.modal.size();
   const Vector3d& n0 = fe.vector;
@@ -165,7 +184,7 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
   ContactState cs;
   cs.normal = b.A * n;
   const Vector3d d = ap.x - bq.x, dj = b.A.transpose() * d;
-  cs.penetration = -d.dot(cs.normal);
+  cs.penetration = offset - d.dot(cs.normal);
   // dd/dv_i = -n_g^T J_P; dd/dv_j = [n_g^T, ((u_Q + d_j) x n)^T, (Psi^T n + Theta^T (d_j x n0))^T]
   // with u_Q the body-axes position of Q (derivation in docs/mbs-run.md).
   cs.grad_i = -cs.normal.transpose() * ap.J;
@@ -178,20 +197,147 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
         (fe.shapes_j.psi.transpose() * n + fe.shapes_j.theta.transpose() * dj.cross(n0)).transpose();
   cs.rate = cs.grad_i.dot(velocityOf(a)) + cs.grad_j.dot(velocityOf(b));
   bool inside = true;
-  if (fe.radius > 0.0) {
-    const Vector3d e = cs.normal.normalized();
+  const Vector3d e = cs.normal.normalized();
+  if (fe.patch_half_u > 0.0 || fe.patch_half_v > 0.0) {
+    // The rectangle's axes turn with body j's frame (a rigid panel's plane).
+    const Vector3d u0 = b.A * fe.patch_axis;
+    const Vector3d u = (u0 - u0.dot(e) * e).normalized(), v = e.cross(u);
+    const double du = std::abs(d.dot(u)) - fe.patch_half_u, dv = std::abs(d.dot(v)) - fe.patch_half_v;
+    cs.outside = std::hypot(std::max(0.0, du), std::max(0.0, dv));
+    inside = cs.outside == 0.0;
+  } else if (fe.radius > 0.0) {
     const double in_plane = (d - d.dot(e) * e).norm();
     inside = in_plane <= fe.radius;
     cs.outside = std::max(0.0, in_plane - fe.radius);
   }
   cs.touching = cs.penetration > 0.0 && inside;
-  if (cs.touching) {
-    cs.elastic = fe.stiffness * std::pow(cs.penetration, fe.exponent);
-    // Never pulling: a fast separation (alpha d_dot < -1) leaves the hysteresis
-    // term larger than the elastic one; the force is then 0, not negative.
-    cs.force = std::max(0.0, cs.elastic * (1.0 + fe.hysteresis * cs.rate));
-  }
+  applyLaw(fe, cs);
   return cs;
+}
+
+// Global position of a body point with shapes sh (no Jacobian).
+Vector3d pointPosition(const BodyPose& b, const Vector3d& s0, const PointShapes& sh) {
+  if (sh.psi.cols() > 0 && sh.psi.cols() == b.modal.size()) return b.r + b.A * (s0 + sh.psi * b.modal);
+  return b.r + b.A * s0;
+}
+
+// The segment [x_a, x_b] of body i (radius r) against the edge polyline of
+// body j (half thickness h): the pair of closest points over the edge's
+// pieces, c_i = (1 - s) x_a + s x_b and c_j = (1 - t) x_k + t x_k+1,
+// penetration d = r + h - |c_i - c_j|, normal n = (c_i - c_j) / |c_i - c_j|
+// from the edge to the segment. As s and t minimise the distance, its
+// gradient is the points' own (envelope theorem):
+//   dd/dv_i = -n^T ((1 - s) J_a + s J_b),  dd/dv_j = n^T ((1 - t) J_k + t J_k+1),
+// so F n acts at the segment's end points in the ratio (1 - s) : s and -F n
+// at the edge's two nodes in the ratio (1 - t) : t, and the force is the
+// exact gradient of the potential k d^(n+1) / (n+1) as for the plane.
+ContactState segmentEdge(const ForceElement& fe, const std::vector<BodyPose>& P) {
+  const BodyPose &a = P[fe.body_i], &b = P[fe.body_j];
+  const Vector3d xa = pointPosition(a, fe.point_i, fe.shapes_i), xb = pointPosition(a, fe.point_i2, fe.shapes_i2);
+  const std::size_t ne = fe.edge_points.size();
+  std::vector<Vector3d> xe(ne);
+  for (std::size_t k = 0; k < ne; ++k) xe[k] = pointPosition(b, fe.edge_points[k], fe.edge_shapes[k]);
+  double best = std::numeric_limits<double>::infinity(), s = 0.0, t = 0.0;
+  std::size_t kb = 0;
+  for (std::size_t k = 0; k + 1 < ne; ++k) {
+    double sk = 0.0, tk = 0.0;
+    closestSegmentPoints(xa, xb, xe[k], xe[k + 1], sk, tk);
+    const double dist = ((xa + sk * (xb - xa)) - (xe[k] + tk * (xe[k + 1] - xe[k]))).norm();
+    if (dist < best) best = dist, s = sk, t = tk, kb = k;
+  }
+  ContactState cs;
+  const Vector3d ci = xa + s * (xb - xa), cj = xe[kb] + t * (xe[kb + 1] - xe[kb]);
+  Vector3d n = ci - cj;
+  if (best > 0.0) {
+    n /= best;
+  } else {  // the axes meet: the normal of both (the distance's gradient is undefined there)
+    n = (xb - xa).cross(xe[kb + 1] - xe[kb]);
+    n = n.norm() > 0.0 ? Vector3d(n.normalized()) : Vector3d::UnitZ();
+  }
+  cs.normal = n;
+  cs.penetration = fe.segment_radius + fe.edge_half_thickness - best;
+  const Attached pa = attachedPoint(a, fe.point_i, fe.shapes_i.psi), pb = attachedPoint(a, fe.point_i2, fe.shapes_i2.psi);
+  const Attached e0 = attachedPoint(b, fe.edge_points[kb], fe.edge_shapes[kb].psi);
+  const Attached e1 = attachedPoint(b, fe.edge_points[kb + 1], fe.edge_shapes[kb + 1].psi);
+  cs.grad_i = -n.transpose() * ((1.0 - s) * pa.J + s * pb.J);
+  cs.grad_j = n.transpose() * ((1.0 - t) * e0.J + t * e1.J);
+  cs.rate = cs.grad_i.dot(velocityOf(a)) + cs.grad_j.dot(velocityOf(b));
+  cs.touching = cs.penetration > 0.0;
+  applyLaw(fe, cs);
+  return cs;
+}
+
+// Every edge point of body i against the plane (patch) of body j, each with
+// its own penetration and force: the sums of the forces, powers and
+// potentials; the reported penetration, rate and normal are the deepest
+// point's; grad_i, grad_j are the force-weighted mean gradients, so that
+// -F grad is the sum of the points' generalised forces.
+ContactState edgePlane(const ForceElement& fe, const std::vector<BodyPose>& P) {
+  ContactState total;
+  total.penetration = -std::numeric_limits<double>::infinity();
+  total.grad_i.setZero(P[fe.body_i].nv());
+  total.grad_j.setZero(P[fe.body_j].nv());
+  for (std::size_t k = 0; k < fe.edge_points.size(); ++k) {
+    const ContactState c = pointPlane(fe, P, fe.edge_points[k], fe.edge_shapes[k], fe.edge_half_thickness);
+    const double reported = reportedPenetration(c);
+    if (reported > total.penetration) {
+      total.penetration = reported;
+      total.rate = c.rate;
+      total.normal = c.normal;
+    }
+    if (!c.touching) continue;
+    total.touching = true;
+    total.force += c.force;
+    total.elastic += c.elastic;
+    total.dissipation += c.dissipation;
+    total.potential += c.potential;
+    total.grad_i += c.force * c.grad_i;
+    total.grad_j += c.force * c.grad_j;
+  }
+  if (total.force > 0.0) {
+    total.grad_i /= total.force;
+    total.grad_j /= total.force;
+  }
+  return total;
+}
+
+}  // namespace
+
+void closestSegmentPoints(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2, const Vector3d& q2, double& s,
+                          double& t) {
+  const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  s = t = 0.0;
+  if (a == 0.0 && e == 0.0) return;
+  if (a == 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+    return;
+  }
+  const double c = d1.dot(r);
+  if (e == 0.0) {
+    s = std::clamp(-c / a, 0.0, 1.0);
+    return;
+  }
+  const double bb = d1.dot(d2), denom = a * e - bb * bb;
+  // Parallel (to rounding): any s gives the lines' distance; start from s = 0.
+  s = denom > 1e-14 * a * e ? std::clamp((bb * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  t = (bb * s + f) / e;
+  if (t < 0.0) {
+    t = 0.0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = std::clamp((bb - c) / a, 0.0, 1.0);
+  }
+}
+
+ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P) {
+  switch (fe.contact_kind) {
+    case ForceElement::ContactKind::SegmentEdge: return segmentEdge(fe, P);
+    case ForceElement::ContactKind::EdgePlane: return edgePlane(fe, P);
+    case ForceElement::ContactKind::PointPlane: break;
+  }
+  return pointPlane(fe, P, fe.point_i, fe.shapes_i, 0.0);
 }
 
 double reportedPenetration(const ContactState& cs) {
@@ -219,7 +365,8 @@ void interfaceForces(const Model& model, const ForceElement& fe, const std::vect
     if (sp.L <= 0.0) return;
     if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, sp.F * sp.e});
     if (!fe.interface_j.empty()) out.push_back({fe.body_j, &fe.interface_j, -sp.F * sp.e});
-  } else if (fe.type == ForceType::Contact && (!fe.interface_i.empty() || !fe.interface_j.empty())) {
+  } else if (fe.type == ForceType::Contact && fe.contact_kind == ForceElement::ContactKind::PointPlane &&
+             (!fe.interface_i.empty() || !fe.interface_j.empty())) {
     const ContactState cs = contactState(fe, P);
     if (!cs.touching) return;
     if (!fe.interface_i.empty()) out.push_back({fe.body_i, &fe.interface_i, cs.force * cs.normal});

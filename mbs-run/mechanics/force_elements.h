@@ -70,8 +70,25 @@ struct ContactState {
   double outside = 0.0;      // in-plane distance of P beyond the patch's edge [m] (0 inside or unbounded)
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // n_g, global
   Eigen::RowVectorXd grad_i, grad_j;                 // dd/dv of the two bodies
+  double dissipation = 0.0;  // (F - k d^n) d_dot >= 0 [W], summed over the contact's points
+  double potential = 0.0;    // k d^(n+1) / (n+1) [J], summed
 };
+// The other kinds (ForceElement::ContactKind) use the same law:
+// - segment against edge: a rod's axis [x_a, x_b] on body i (radius r)
+//   against a polyline of body j's points (a panel's hinge edge, half
+//   thickness h): d = r + h minus the distance of the closest points, F n at
+//   the segment's ends and -F n at the edge's two nearest nodes in the
+//   closest points' ratios (force_elements.cpp, segmentEdge);
+// - edge against plane: each of body i's edge points (half thickness h off
+//   it) against body j's plane patch, summed (edgePlane): grad_i, grad_j are
+//   then the force-weighted means, so that -F grad is the sum's generalised
+//   force; the reported d, d_dot and normal are the deepest point's.
 ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P);
+
+// The closest points p1 + s (q1 - p1) and p2 + t (q2 - p2), s, t in [0, 1],
+// of two segments (Ericson, Real-Time Collision Detection, 2005, 5.1.9).
+void closestSegmentPoints(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                          const Eigen::Vector3d& q2, double& s, double& t);
 
 // What the results report as the contact's penetration: d inside the patch,
 // and outside it minus P's distance to the patch disk, -hypot(outside, d)

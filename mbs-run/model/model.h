@@ -148,6 +148,25 @@ struct ForceElement {
   double exponent = 1.0;    // n: 1 linear, 1.5 Hertz
   double hysteresis = 0.0;  // Lankarani-Nikravesh 3 (1 - e^2) / (4 v0) [s/m]
   double radius = 0.0;      // in-plane extent of the plane patch about point j; 0: unbounded
+  // The plane patch as a rectangle instead (a panel's mid-plane): half-widths
+  // along `patch_axis` (body j axes, in the plane) and along n x patch_axis;
+  // both 0: the circular `radius` (or unbounded).
+  Vector3d patch_axis = Vector3d::UnitX();
+  double patch_half_u = 0.0, patch_half_v = 0.0;
+  // Which contact (force_elements.h): point i against the plane of j; the
+  // segment from point_i to point_i2 of body i (a rod's axis, `segment_radius`
+  // its radius) against the edge polyline `edge_points` of body j; or each
+  // edge point of body i against the plane of j. The edge's points are
+  // interfaces or mesh nodes with their shapes, `edge_half_thickness` the
+  // panel's half thickness about them.
+  enum class ContactKind { PointPlane, SegmentEdge, EdgePlane };
+  ContactKind contact_kind = ContactKind::PointPlane;
+  Vector3d point_i2 = Vector3d::Zero();
+  PointShapes shapes_i2;
+  double segment_radius = 0.0;
+  std::vector<Vector3d> edge_points;
+  std::vector<PointShapes> edge_shapes;
+  double edge_half_thickness = 0.0;
 };
 
 struct Event {

@@ -351,24 +351,120 @@ PiecewiseLinear parseTable(const InputNode& t) {
   return f;
 }
 
-// `type: contact`: a point of the first body against a plane of the second
-// (force_elements.h, contactState).
-void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
-  f.allowKeys({"name", "type", "bodies", "point", "plane", "stiffness", "exponent", "restitution", "impact_speed",
-               "radius", "enabled"});
-  fe.type = ForceType::Contact;
-  const InputNode b = f["bodies"];
-  if (!b.isSequence() || b.size() != 2) b.fail("expected two body names [body of the point, body of the plane]");
-  fe.body_i = bodyRef(m, b.at(0));
-  fe.body_j = bodyRef(m, b.at(1));
-  if (fe.body_i == fe.body_j) b.fail("expected two different bodies");
-  fe.point_i = pointRef(m, fe.body_i, f["point"], fe.shapes_i);
-  if (f["point"].isScalar()) fe.interface_i = f["point"].asString();
-  const InputNode pl = f["plane"];
-  pl.allowKeys({"point", "normal"});
+// A contact's edge on `body`: `points:` (interface names or body
+// coordinates, in order along the edge), or `from:`/`to:` on a flexible
+// body: the mesh nodes within `tolerance` of that line (body coordinates),
+// ordered along it, each moving with its node's mode shapes.
+void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
+  e.allowKeys({"points", "from", "to", "tolerance", "half_thickness"});
+  const Body& b = m.bodies[body];
+  fe.edge_half_thickness = e.has("half_thickness") ? e["half_thickness"].asNonNegative() : 0.0;
+  if (e.has("points") == (e.has("from") || e.has("to")))
+    e.fail("expected either 'points' (the edge's points in order) or 'from' and 'to' (a line of the body's mesh nodes)");
+  if (e.has("points")) {
+    const InputNode pts = e["points"];
+    if (!pts.isSequence() || pts.size() < 2) pts.fail("expected at least two points along the edge");
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      PointShapes sh;
+      fe.edge_points.push_back(pointRef(m, body, pts.at(k), sh));
+      fe.edge_shapes.push_back(sh);
+    }
+    return;
+  }
+  if (!b.flex) e.fail("'from'/'to' select mesh nodes, but body '" + b.name + "' is rigid: give 'points'");
+  const Vector3d from = vec3(e["from"], kMaxLength, "m"), to = vec3(e["to"], kMaxLength, "m");
+  const double tol = e.has("tolerance") ? e["tolerance"].asNonNegative() : 1e-4;
+  const Vector3d dir = to - from;
+  if (!(dir.norm() > 0.0)) e["to"].fail("expected 'to' apart from 'from'");
+  fc::FlexBodyFile f;
+  try {
+    f = fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& ex) {
+    e.fail(std::string("cannot read the mesh of body '") + b.name + "': " + ex.what());
+  }
+  std::vector<std::pair<double, Eigen::Index>> on;  // (position along the line, node)
+  for (Eigen::Index k = 0; k < f.body.nodes.rows(); ++k) {
+    const Vector3d x = f.body.nodes.row(k).transpose();
+    const double t = (x - from).dot(dir) / dir.squaredNorm();
+    if (t < -1e-9 || t > 1.0 + 1e-9) continue;
+    if ((x - from - t * dir).norm() <= tol) on.push_back({t, k});
+  }
+  std::sort(on.begin(), on.end());
+  if (on.size() < 2)
+    e.fail("found " + std::to_string(on.size()) + " mesh node(s) of body '" + b.name + "' within " +
+           std::to_string(tol) + " m of the line from 'from' to 'to': expected at least two (check the body "
+           "coordinates, or widen 'tolerance')");
+  for (const auto& [t, k] : on) {
+    fe.edge_points.push_back(f.body.nodes.row(k).transpose());
+    PointShapes sh;
+    sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
+    sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
+    fe.edge_shapes.push_back(sh);
+  }
+}
+
+// The plane of a contact on body j: {point, normal} with an optional
+// rectangle patch {axis, half_sizes}.
+void parsePlane(const Model& m, const InputNode& pl, ForceElement& fe) {
+  pl.allowKeys({"point", "normal", "rectangle"});
   fe.point_j = pointRef(m, fe.body_j, pl["point"], fe.shapes_j);
   if (pl["point"].isScalar()) fe.interface_j = pl["point"].asString();
   fe.vector = unitVector(pl["normal"]);
+  if (pl.has("rectangle")) {
+    const InputNode r = pl["rectangle"];
+    r.allowKeys({"axis", "half_sizes"});
+    const Vector3d u = unitVector(r["axis"]);
+    const Vector3d u_in = u - u.dot(fe.vector) * fe.vector;
+    if (!(u_in.norm() > 1e-6)) r["axis"].fail("expected an axis in the plane (not along its normal)");
+    fe.patch_axis = u_in.normalized();
+    const Eigen::VectorXd h = r["half_sizes"].asVector(2);
+    if (!(h[0] > 0.0 && h[1] > 0.0)) r["half_sizes"].fail("expected two half sizes > 0 [m]");
+    fe.patch_half_u = h[0];
+    fe.patch_half_v = h[1];
+  }
+}
+
+// `type: contact`: a point of the first body against a plane of the second,
+// a segment of the first against an edge of the second, or an edge of the
+// first against a plane of the second (force_elements.h, contactState).
+void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
+  f.allowKeys({"name", "type", "bodies", "point", "plane", "segment", "edge", "stiffness", "exponent", "restitution",
+               "impact_speed", "radius", "enabled"});
+  fe.type = ForceType::Contact;
+  const InputNode b = f["bodies"];
+  if (!b.isSequence() || b.size() != 2)
+    b.fail("expected two body names [body of the point, segment or edge; body of the plane or edge]");
+  fe.body_i = bodyRef(m, b.at(0));
+  fe.body_j = bodyRef(m, b.at(1));
+  if (fe.body_i == fe.body_j) b.fail("expected two different bodies");
+  const int firsts = int(f.has("point")) + int(f.has("segment")) + int(f.has("edge") && !f.has("segment"));
+  if (firsts != 1)
+    f.fail("expected one of: 'point' and 'plane' (point against plane), 'segment' and 'edge' (segment against "
+           "edge), 'edge' and 'plane' (edge against plane)");
+  if (f.has("segment")) {
+    fe.contact_kind = ForceElement::ContactKind::SegmentEdge;
+    if (f.has("plane")) f["plane"].fail("a segment acts against an 'edge', not a plane");
+    if (f.has("radius")) f["radius"].fail("a segment's radius is segment: {radius}");
+    const InputNode sg = f["segment"];
+    sg.allowKeys({"points", "radius"});
+    const InputNode pts = sg["points"];
+    if (!pts.isSequence() || pts.size() != 2) pts.fail("expected the segment's two end points");
+    fe.point_i = pointRef(m, fe.body_i, pts.at(0), fe.shapes_i);
+    fe.point_i2 = pointRef(m, fe.body_i, pts.at(1), fe.shapes_i2);
+    if ((fe.point_i2 - fe.point_i).norm() == 0.0) pts.fail("expected two distinct end points");
+    fe.segment_radius = sg.has("radius") ? sg["radius"].asNonNegative() : 0.0;
+    parseEdge(m, fe.body_j, f["edge"], fe);
+  } else if (f.has("edge")) {
+    fe.contact_kind = ForceElement::ContactKind::EdgePlane;
+    parseEdge(m, fe.body_i, f["edge"], fe);
+    parsePlane(m, f["plane"], fe);
+  } else {
+    fe.point_i = pointRef(m, fe.body_i, f["point"], fe.shapes_i);
+    if (f["point"].isScalar()) fe.interface_i = f["point"].asString();
+    parsePlane(m, f["plane"], fe);
+  }
   fe.exponent = f.has("exponent") ? f["exponent"].asInRange(1.0, 3.0, "") : 1.0;
   if (fe.exponent != 1.0 && f.units())
     f["exponent"].fail("a contact stiffness with an exponent other than 1 is in N/m^exponent, which units: cannot "
