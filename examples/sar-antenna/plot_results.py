@@ -67,18 +67,22 @@ class Run:
         """Time of the knee's closest approach to straight: its first zero
         (v1 geometry, linear interpolation between samples) or, in v2 where the
         knee never straightens, its first local minimum below 0.2 rad
-        (parabola through the three samples); None if neither in phase 1."""
+        (parabola through the three samples), whichever comes first (a knee that
+        turns back at a minimum and crosses zero only later, after the stop's
+        impacts, reached its closest approach at the minimum); None if neither
+        in phase 1."""
         t, r = self.t[self.p1], self.r3[self.p1]
+        found = []
         s = np.nonzero(np.sign(r[:-1]) * np.sign(r[1:]) <= 0)[0]
         if len(s):
             k = s[0]
-            return t[k] + (t[k + 1] - t[k]) * r[k] / (r[k] - r[k + 1]) if r[k] != r[k + 1] else t[k]
+            found.append(t[k] + (t[k + 1] - t[k]) * r[k] / (r[k] - r[k + 1]) if r[k] != r[k + 1] else t[k])
         m = np.nonzero((r[1:-1] < r[:-2]) & (r[1:-1] <= r[2:]) & (r[1:-1] < 0.2))[0]
-        if len(m) == 0:
-            return None
-        k = m[0] + 1
-        den = r[k - 1] - 2 * r[k] + r[k + 1]
-        return t[k] + 0.5 * (t[k] - t[k - 1]) * (r[k - 1] - r[k + 1]) / den if den > 0 else t[k]
+        if len(m):
+            k = m[0] + 1
+            den = r[k - 1] - 2 * r[k] + r[k + 1]
+            found.append(t[k] + 0.5 * (t[k] - t[k - 1]) * (r[k - 1] - r[k + 1]) / den if den > 0 else t[k])
+        return min(found) if found else None
 
     def after_alignment(self):
         """Peak-to-peak of R3 and largest |omega3| between alignment and the end of phase 1."""
