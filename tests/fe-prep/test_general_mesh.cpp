@@ -330,6 +330,17 @@ std::vector<double> stiffenedPanelCalculix(const std::string& key) {
   throw std::runtime_error("no CalculiX row " + key);
 }
 
+// The stiffened panel's skin material and [0/45/-45/90]s laminate (IM6, 0.25 mm
+// plies), as the CalculiX decks and ritz_skin.py have them.
+std::string stiffenedSkinLibrary() {
+  std::string lam = "laminates:\n  skin: [";
+  const int angles[8] = {0, 45, -45, 90, 90, -45, 45, 0};
+  for (int k = 0; k < 8; ++k)
+    lam += std::string(k ? ", " : "") + "{material: im6, thickness: 0.00025, angle_deg: " + std::to_string(angles[k]) + "}";
+  return "materials:\n  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, "
+         "G23: 3.6e9, nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}\n" + lam + "]\n";
+}
+
 // The stiffened panel of examples/stiffened-panel (bare: no paint, no fitting
 // mass) clamped at its root, against CalculiX 2.20: [0/45/-45/90]s S8R
 // composite shells and B32R stringers on their own nodes tied to the skin's
@@ -357,12 +368,7 @@ std::vector<double> stiffenedPanelCalculix(const std::string& key) {
 // +0.22 to +1.79 %, bound 2 %.
 TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
   const std::string dir = std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel";
-  std::string lam = "laminates:\n  skin: [";
-  const int angles[8] = {0, 45, -45, 90, 90, -45, 45, 0};
-  for (int k = 0; k < 8; ++k)
-    lam += std::string(k ? ", " : "") + "{material: im6, thickness: 0.00025, angle_deg: " + std::to_string(angles[k]) + "}";
-  const std::string lib = "materials:\n  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, "
-                          "G23: 3.6e9, nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}\n" + lam + "]\n";
+  const std::string lib = stiffenedSkinLibrary();
   const std::string regions = "  mesh: {file: " + dir + "/panel_64.msh}\n  mass: consistent\n  regions:\n"
                               "    skin: {shell: {laminate: skin, element: dst, axis: [1, 0, 0]}}\n"
                               "    stringers: {beam: {section: {file: " + dir + "/stringer.h5}, orientation: [0, 1, 0]}}\n"
@@ -399,12 +405,7 @@ TEST(GeneralMesh, StiffenedPanelAgainstCalculix) {
 // shell theory's omission, not the element's.
 TEST(GeneralMesh, StiffenedPanelSkinAgainstLaminationTheory) {
   const std::string dir = std::string(FLEXCOMP_DATA_DIR) + "/calculix/stiffened_panel";
-  std::string lam = "laminates:\n  skin: [";
-  const int angles[8] = {0, 45, -45, 90, 90, -45, 45, 0};
-  for (int k = 0; k < 8; ++k)
-    lam += std::string(k ? ", " : "") + "{material: im6, thickness: 0.00025, angle_deg: " + std::to_string(angles[k]) + "}";
-  const std::string lib = "materials:\n  im6: {type: orthotropic, E1: 177e9, E2: 10.8e9, E3: 10.8e9, G12: 7.6e9, G13: 7.6e9, "
-                          "G23: 3.6e9, nu12: 0.27, nu13: 0.27, nu23: 0.5, rho: 1600}\n" + lam + "]\n";
+  const std::string lib = stiffenedSkinLibrary();
   const BuildResult modal = runYaml(lib + "body:\n  mesh: {file: " + dir + "/panel_64.msh}\n  mass: consistent\n  regions:\n"
                                     "    skin: {shell: {laminate: skin, element: dst, axis: [1, 0, 0]}}\n"
                                     "  reference: {clamp: [root]}\n  ignore: [tip, stringers]\n  modes: 10\n");

@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "common/flexbody.h"
 #include "common/input.h"
@@ -95,6 +96,19 @@ Physical Curve("root") = {5, 6};
 
 Eigen::Matrix3d reducedQ() { return fc::feprep::test::reducedStiffness(E1, E2, G12, NU12); }
 using fc::feprep::test::reuterT;  // laminate -> ply axes, engineering strains
+
+// A mixed body's recovery data as its two parts: the triangles alone (a shell
+// body's) and the beams alone (a beam body's), for comparison with the mixed one.
+std::pair<StressRecoveryData, StressRecoveryData> splitMixed(const StressRecoveryData& d) {
+  const long nb = d.beam_resultants.rows() / 6, nt = d.centroids.rows() - nb;
+  StressRecoveryData beams;
+  beams.centroids = d.centroids.bottomRows(nb);
+  beams.beam_resultants = d.beam_resultants;
+  StressRecoveryData shells = d;
+  shells.centroids = d.centroids.topRows(nt);
+  shells.beam_resultants.resize(0, 0);
+  return {shells, beams};
+}
 
 TEST(MixedBodyStress, SkinPliesAndStringerForcesOfImposedStatesAreTheClosedForms) {
   const std::string dir = scratchDir("mixed_stress_closed_forms");
@@ -185,13 +199,7 @@ TEST(MixedBodyStress, BodyFileRoundTripsAndTheMixedRecoveryIsTheShellsAndTheBeam
   const auto mixed = mbs::loadStressRecovery(path, nm);
 
   // The parts on their own: the triangles as a shell body, the beams as a beam body.
-  const long nb = d.beam_resultants.rows() / 6, nt = d.centroids.rows() - nb;
-  StressRecoveryData beams;
-  beams.centroids = d.centroids.bottomRows(nb);
-  beams.beam_resultants = d.beam_resultants;
-  StressRecoveryData shells = d;
-  shells.centroids = d.centroids.topRows(nt);
-  shells.beam_resultants.resize(0, 0);
+  const auto [shells, beams] = splitMixed(d);
   const auto shell = mbs::shellStressRecovery(shells), beam = mbs::beamStressRecovery(beams);
   const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(nm, 1.0, -0.5);
   std::vector<Eigen::VectorXd> fm, fs, fb;
@@ -216,13 +224,7 @@ TEST(MixedBodyStress, BeamEnvelopeAndPeakSectionMomentAreTheBeamBodys) {
   const StressRecoveryData& d = b.body.stress;
   ASSERT_TRUE(d.hasShell() && d.hasBeam());
   const int nm = static_cast<int>(d.shell_strains.cols());
-  const long nb = d.beam_resultants.rows() / 6, nt = d.centroids.rows() - nb;
-  StressRecoveryData beams;
-  beams.centroids = d.centroids.bottomRows(nb);
-  beams.beam_resultants = d.beam_resultants;
-  StressRecoveryData shells = d;
-  shells.centroids = d.centroids.topRows(nt);
-  shells.beam_resultants.resize(0, 0);
+  const auto [shells, beams] = splitMixed(d);
   const auto mixed = mbs::stressRecovery(d, "<mixed>");
   const auto shell = mbs::shellStressRecovery(shells), beam = mbs::beamStressRecovery(beams);
   mbs::StressEnvelope em, es, eb;
