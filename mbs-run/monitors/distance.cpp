@@ -4,37 +4,17 @@
 #include <cmath>
 #include <limits>
 
+#include "mbs-run/mechanics/force_elements.h"
+
 namespace fc::mbs {
 
 using Eigen::Vector3d;
 
 double segmentSegmentDistance(const Vector3d& p1, const Vector3d& q1, const Vector3d& p2, const Vector3d& q2) {
-  // Ericson 5.1.9: s, t in [0, 1] minimising |p1 + s d1 - p2 - t d2|.
-  const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  const double eps = 1e-30;
-  double s = 0, t = 0;
-  if (a <= eps && e <= eps) return r.norm();
-  if (a <= eps) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= eps) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return ((p1 + s * d1) - (p2 + t * d2)).norm();
+  // The contact elements' closest points (Ericson 5.1.9), one kernel for both.
+  double s = 0.0, t = 0.0;
+  closestSegmentPoints(p1, q1, p2, q2, s, t);
+  return ((p1 + s * (q1 - p1)) - (p2 + t * (q2 - p2))).norm();
 }
 
 Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {

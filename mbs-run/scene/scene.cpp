@@ -351,6 +351,19 @@ PiecewiseLinear parseTable(const InputNode& t) {
   return f;
 }
 
+// A flexible body's whole file (mesh, mode shapes), for the scene keys that
+// name its mesh nodes (a contact's edge, the contact monitor); a file that
+// cannot be read is an error at the key `at`.
+fc::FlexBodyFile readBodyMesh(const Body& b, const InputNode& at) {
+  try {
+    return fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is no input error
+  } catch (const std::exception& e) {
+    at.fail(std::string("cannot read the mesh of body '") + b.name + "': " + e.what());
+  }
+}
+
 // A contact's edge on `body`: `points:` (interface names or body
 // coordinates, in order along the edge), or `from:`/`to:` on a flexible
 // body: the mesh nodes within `tolerance` of that line (body coordinates),
@@ -376,14 +389,7 @@ void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
   const double tol = e.has("tolerance") ? e["tolerance"].asNonNegative() : 1e-4;
   const Vector3d dir = to - from;
   if (!(dir.norm() > 0.0)) e["to"].fail("expected 'to' apart from 'from'");
-  fc::FlexBodyFile f;
-  try {
-    f = fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& ex) {
-    e.fail(std::string("cannot read the mesh of body '") + b.name + "': " + ex.what());
-  }
+  const fc::FlexBodyFile f = readBodyMesh(b, e);
   std::vector<std::pair<double, Eigen::Index>> on;  // (position along the line, node)
   for (Eigen::Index k = 0; k < f.body.nodes.rows(); ++k) {
     const Vector3d x = f.body.nodes.row(k).transpose();
@@ -689,14 +695,7 @@ void forEachEntry(const InputNode& root, const char* key, F&& f) {
 // A flexible body's geometry for the contact monitor: its mesh (shell
 // triangles, beam elements as segments) with each node's modal displacement.
 std::shared_ptr<BodyGeometry> meshGeometry(const Body& b, const InputNode& at) {
-  fc::FlexBodyFile f;
-  try {
-    f = fc::readFlexBody(b.flex->file, b.modes, fc::FlexBodyParts::All);
-  } catch (const std::bad_alloc&) {
-    throw;  // out of memory is no input error
-  } catch (const std::exception& e) {
-    at.fail(std::string("cannot read the mesh of body '") + b.name + "': " + e.what());
-  }
+  const fc::FlexBodyFile f = readBodyMesh(b, at);
   auto g = std::make_shared<BodyGeometry>();
   const Eigen::Index n = f.body.nodes.rows();
   g->vertices = f.body.nodes.transpose();
