@@ -21,29 +21,43 @@ def text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def latches(f):
+    """Each latched joint's row of /margins/latches (time, angle, arrival rate), by joint name."""
+    if "margins/latches" not in f:
+        return {}
+    names = text(f["margins/latches"].attrs.get("joints", "")).split()
+    return {n: row for n, row in zip(names, f["margins/latches"][()])}
+
+
+def smallest_clearance(f, lat):
+    """The contact monitor's smallest distance up to 0.2 s before the R1 latch (at the latch panels 1 and
+    2 are coplanar and their mid-plane rectangles meet at the hinge line: the monitor's idealisation, not
+    a crossing), or to the end without one: (distance, pair, time, end), or None without a monitor."""
+    if "distances" not in f:
+        return None
+    t = f["time"][()]
+    end = lat["R1"][0] - 0.2 if "R1" in lat else t[-1]
+    rows = t <= end
+    pair, d = min(((k, f["distances"][k][()][rows]) for k in f["distances"]), key=lambda kv: kv[1].min())
+    return d.min(), pair, t[rows][d.argmin()], end
+
+
 def line(spec):
     path, _, rest = spec.partition(":")
     label, _, stress = rest.partition(":")
     with h5py.File(path, "r") as f:
         a = f.attrs
         out = [f"{label or path}: {text(a.get('status', '?'))}"]
-        lat = f["margins/latches"][()] if "margins/latches" in f else []
-        names = text(f["margins/latches"].attrs.get("joints", "")).split() if "margins/latches" in f else []
-        deployed = [row for n, row in zip(names, lat) if n == "R1"]
-        out.append(f"deployed (R1 latch) at {deployed[0][0]:.3f} s" if deployed else "NOT deployed (no R1 latch)")
-        out.append("latches " + (", ".join(f"{n} {row[0]:.3f} s at {row[2]:.3f} rad/s" for n, row in zip(names, lat))
+        lat = latches(f)
+        out.append(f"deployed (R1 latch) at {lat['R1'][0]:.3f} s" if "R1" in lat else "NOT deployed (no R1 latch)")
+        out.append("latches " + (", ".join(f"{n} {row[0]:.3f} s at {row[2]:.3f} rad/s" for n, row in lat.items())
                                  or "none"))
         if "buckling_ratio_max" in a:
             out.append(f"largest truss compression {a['buckling_ratio_max']:.2f} x Euler ({text(a['buckling_ratio_max_body'])})")
-        if "distances" in f:
-            # Up to 0.2 s before the R1 latch: at the latch panels 1 and 2 are coplanar and their mid-plane
-            # rectangles meet at the hinge line (the monitor's idealisation, not a crossing).
-            t = f["time"][()]
-            end = deployed[0][0] - 0.2 if deployed else t[-1]
-            rows = t <= end
-            pair, d = min(((k, f["distances"][k][()][rows]) for k in f["distances"]), key=lambda kv: kv[1].min())
-            out.append(f"smallest clearance {1e3 * d.min():.1f} mm ({pair}, {t[rows][d.argmin()]:.2f} s; "
-                       f"to {end:.2f} s)")
+        clearance = smallest_clearance(f, lat)
+        if clearance:
+            d, pair, when, end = clearance
+            out.append(f"smallest clearance {1e3 * d:.1f} mm ({pair}, {when:.2f} s; to {end:.2f} s)")
         fi = a.get("peak_failure_index")
         src = f
         if fi is None and stress:

@@ -34,20 +34,10 @@ import argparse
 import h5py
 import numpy as np
 
+from deploy_summary import latches, smallest_clearance, text
 from plot_results import Run, panel_twist
 
 LEGS = ("B11", "B12")
-
-
-def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
-def latches(f):
-    if "margins/latches" not in f:
-        return {}
-    names = text(f["margins/latches"].attrs["joints"]).split()
-    return {n: row for n, row in zip(names, f["margins/latches"][()])}
 
 
 def legs(f, t, phase):
@@ -98,13 +88,8 @@ def row(path, label, phase1_end, rigid_phase2):
                     f["energy/dissipated"][()].max())
         err = a["energy_balance_error"]
         cells.append(f"{err:.1e} J ({err / scale:.1e})")
-        if "distances" in f:
-            end = (lat["R1"][0] if "R1" in lat else t[-1]) - 0.2
-            rows = t <= end
-            pair, d = min(((k, f["distances"][k][()][rows]) for k in f["distances"]), key=lambda kv: kv[1].min())
-            cells.append(f"{1e3 * d.min():.1f} mm ({pair}, {t[rows][int(np.argmin(d))]:.2f} s)")
-        else:
-            cells.append("-")
+        clearance = smallest_clearance(f, lat)
+        cells.append(f"{1e3 * clearance[0]:.1f} mm ({clearance[1]}, {clearance[2]:.2f} s)" if clearance else "-")
         cf = [(f[f"contacts/{c}/force"].attrs["peak"], c, f[f"contacts/{c}/force"].attrs["peak_time"])
               for c in f["contacts"]] if "contacts" in f else []
         top = max(cf) if cf else None
