@@ -115,7 +115,10 @@ else:
                       if c not in piv and abs(R[q, c]) > 1e-14]
             terms += [(point_nodes[-1], d + 1, -Pm[q, d]) for d in range(3) if abs(Pm[q, d]) > 1e-14]
             eqs.append(str(len(terms)))
-            flat = [f"{t[0]}, {t[1]}, {t[2]:.15g}" for t in terms]
+            # CalculiX reads the first 20 characters of a number: .14g is at
+            # most 20 ("-1.2345678901234e-05"); .15g made 21 and lost the
+            # exponent's last digit (a 1e-5 coefficient read as 1).
+            flat = [f"{t[0]}, {t[1]}, {t[2]:.14g}" for t in terms]
             for k in range(0, len(flat), 4):                # at most 12 entries a line
                 eqs.append(", ".join(flat[k:k + 4]) + ("," if k + 4 < len(flat) else ""))
     lines += eqs
