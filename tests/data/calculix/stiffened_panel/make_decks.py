@@ -39,6 +39,7 @@ shells and beams it makes rigid knots.
   python3 make_decks.py msh 32 64 128    -> panel_32.msh ...
   python3 make_decks.py section          -> stringer.h5
   python3 make_decks.py ccx 16 32 64     -> modal_16.inp static_16.inp ...
+  python3 make_decks.py skin 32          -> skin_32.inp (the skin alone, modal)
   ccx -i modal_16; ccx -i static_16 ...  (Debian calculix-ccx 2.20-1)
   python3 make_decks.py --collect 16 32 64 > ccx_results.txt
 """
@@ -50,6 +51,20 @@ LX, LY, YS = 0.8, 0.5, 0.125
 PLY, ANGLES = 0.00025, (0, 45, -45, 90, 90, -45, 45, 0)
 E1, E2, NU12, NU23, G12, G23, RHO_C = 177e9, 10.8e9, 0.27, 0.5, 7.6e9, 3.6e9, 1600.0
 E_AL, NU_AL, RHO_AL, BW, BH = 70e9, 0.33, 2700.0, 0.004, 0.025
+
+
+def ccx_num(v):
+    """A number for a CalculiX data line. CalculiX reads every number of a
+    data line from its first 20 characters (read(textpart(i)(1:20),
+    '(f20.0)'), e.g. in orientations.f and nodes.f), so '%.17g' of
+    cos(90 deg) = 6.123233995736766e-17 (21 characters) was read as
+    6.123233995736766e-1 = 0.61: the 90-degree plies became 58.5-degree
+    plies. Round-off below 1e-15 is written as 0 and every number in 15
+    significant digits, which always fits."""
+    v = 0.0 if abs(v) < 1e-15 else v
+    t = "%.15g" % v
+    assert len(t) <= 20, t
+    return t
 
 
 def write_msh(nx):
@@ -90,7 +105,7 @@ def write_msh(nx):
         f.write("$EndElements\n")
 
 
-def write_ccx(nc, static, knot=False):
+def write_ccx(nc, static, knot=False, bare=False):
     ncy = nc * 3 // 4
     assert ncy * 4 == nc * 3 and ncy % 4 == 0, "NC must be a multiple of 16"
     mx, my = 2 * nc, 2 * ncy  # half-element grid
@@ -104,11 +119,13 @@ def write_ccx(nc, static, knot=False):
     name = ("static_%d" if static else "modal_%d") % nc
     if knot:
         name = "modal_knot_%d" % nc
+    if bare:
+        name = "skin_%d" % nc  # the skin alone: no stringer nodes, beams, equations or beam section
     with open(name + ".inp", "w") as f:
         f.write("** stiffened [0/45/-45/90]s panel with two blade stringers (make_decks.py)\n*NODE, NSET=NALL\n")
         for (i, j), k in nodes.items():
             x, y = xy(i, j)
-            f.write("%d, %.17g, %.17g, 0\n" % (k, x, y))
+            f.write("%d, %s, %s, 0\n" % (k, ccx_num(x), ccx_num(y)))
         ref, rot = len(nodes) + 1, len(nodes) + 2
         if static:
             f.write("%d, 0.4, 0, 0\n%d, 0.4, 0, 0\n" % (ref, rot))
@@ -127,18 +144,21 @@ def write_ccx(nc, static, knot=False):
             for i in range(mx + 1):
                 beam_nodes[(i, j)] = ref + 2 + len(beam_nodes)
         lay = beam_nodes if not knot else nodes
-        if not knot:
+        if bare:
+            beam_nodes = {}
+        if not knot and not bare:
             f.write("*NODE, NSET=NSTR\n")
             for (i, j), k in beam_nodes.items():
                 x, y = xy(i, j)
-                f.write("%d, %.17g, %.17g, 0\n" % (k, x, y))
-        f.write("*ELEMENT, TYPE=B32R, ELSET=STR\n")
-        for j in (my // 4, 3 * my // 4):
+                f.write("%d, %s, %s, 0\n" % (k, ccx_num(x), ccx_num(y)))
+        if not bare:
+            f.write("*ELEMENT, TYPE=B32R, ELSET=STR\n")
+        for j in ((my // 4, 3 * my // 4) if not bare else ()):
             for I in range(nc):
                 i = 2 * I
                 f.write("%d, %d, %d, %d\n" % (e, lay[(i, j)], lay[(i + 1, j)], lay[(i + 2, j)]))
                 e += 1
-        if not knot:
+        if not knot and not bare:
             # Translations tied, rotations free: each stringer node moves with
             # the skin node it lies on (the root ones are clamped themselves).
             f.write("*EQUATION\n")
@@ -161,8 +181,8 @@ def write_ccx(nc, static, knot=False):
         f.write("*MATERIAL, NAME=ALU\n*ELASTIC\n%g, %g\n*DENSITY\n%g\n" % (E_AL, NU_AL, RHO_AL))
         for a in sorted(set(ANGLES)):
             c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
-            f.write("*ORIENTATION, NAME=P%s, SYSTEM=RECTANGULAR\n%.17g, %.17g, 0., %.17g, %.17g, 0.\n" %
-                    (str(a).replace("-", "M"), c, s, -s, c))
+            f.write("*ORIENTATION, NAME=P%s, SYSTEM=RECTANGULAR\n%s, %s, 0., %s, %s, 0.\n" %
+                    ((str(a).replace("-", "M"),) + tuple(ccx_num(v) for v in (c, s, -s, c))))
         f.write("*SHELL SECTION, ELSET=SKIN, COMPOSITE\n")
         for a in ANGLES:
             f.write("%g, , IM6, P%s\n" % (PLY, str(a).replace("-", "M")))
@@ -170,7 +190,8 @@ def write_ccx(nc, static, knot=False):
         # 2-direction t x n1 = -y (4 mm): with the 1-direction along y the
         # expansion tilts the shared nodes' normals and the skin's bricks
         # next to the stringers get negative Jacobians.
-        f.write("*BEAM SECTION, ELSET=STR, MATERIAL=ALU, SECTION=RECT\n%g, %g\n0., 0., 1.\n" % (BH, BW))
+        if not bare:
+            f.write("*BEAM SECTION, ELSET=STR, MATERIAL=ALU, SECTION=RECT\n%g, %g\n0., 0., 1.\n" % (BH, BW))
         f.write("*BOUNDARY\nROOT, 1, 6\n")
         if not static:
             f.write("*STEP\n*FREQUENCY\n12\n*END STEP\n")
@@ -246,6 +267,8 @@ if __name__ == "__main__":
             write_ccx(s, False)
             write_ccx(s, True)
             write_ccx(s, False, knot=True)
+        elif what == "skin":
+            write_ccx(s, False, bare=True)
     if what == "section":
         write_section()
     if what == "--collect":
