@@ -40,6 +40,8 @@ shells and beams it makes rigid knots.
   python3 make_decks.py section          -> stringer.h5
   python3 make_decks.py ccx 16 32 64     -> modal_16.inp static_16.inp ...
   python3 make_decks.py skin 32          -> skin_32.inp (the skin alone, modal)
+  python3 make_decks.py stringer 32      -> stringer_alone.inp (one stringer, clamped-free)
+                                            and beam theory's frequencies of it
   ccx -i modal_16; ccx -i static_16 ...  (Debian calculix-ccx 2.20-1)
   python3 make_decks.py --collect 16 32 64 > ccx_results.txt
 """
@@ -202,6 +204,42 @@ def write_ccx(nc, static, knot=False, bare=False):
             f.write("*STEP\n*STATIC\n*CLOAD, OP=NEW\n%d, %d, 1.\n*NODE PRINT, NSET=REFS\nU\n*END STEP\n" % (node, dof))
 
 
+def write_stringer_alone(ne):
+    """stringer_alone.inp: one stringer as a 0.8 m cantilever (B32R, the
+    panel's *BEAM SECTION, ne elements along x, root node clamped), free of
+    the skin: its first bending modes in both planes and its first torsion
+    mode against beam theory (stringer_closed_form)."""
+    with open("stringer_alone.inp", "w") as f:
+        f.write("** one blade stringer alone, clamped-free (make_decks.py stringer)\n*NODE, NSET=NALL\n")
+        for i in range(2 * ne + 1):
+            f.write("%d, %s, 0, 0\n" % (i + 1, ccx_num(-LX / 2 + LX * i / (2 * ne))))
+        f.write("*ELEMENT, TYPE=B32R, ELSET=STR\n")
+        for e in range(ne):
+            f.write("%d, %d, %d, %d\n" % (e + 1, 2 * e + 1, 2 * e + 2, 2 * e + 3))
+        f.write("*MATERIAL, NAME=ALU\n*ELASTIC\n%g, %g\n*DENSITY\n%g\n" % (E_AL, NU_AL, RHO_AL))
+        f.write("*BEAM SECTION, ELSET=STR, MATERIAL=ALU, SECTION=RECT\n%g, %g\n0., 0., 1.\n" % (BH, BW))
+        f.write("*BOUNDARY\n1, 1, 6\n*STEP\n*FREQUENCY\n8\n*NODE FILE\nU\n*END STEP\n")
+
+
+def stringer_closed_form():
+    """The clamped-free blade's frequencies [Hz] in beam theory: Euler-
+    Bernoulli bending in the stiff plane (deflection along z, I = BW BH^3/12)
+    and the weak plane (along y, I = BH BW^3/12), beta L = 1.875104, 4.694091,
+    7.854757; St-Venant torsion (2n - 1)/(4 L) sqrt(G J / (rho Ip)) with
+    J = a b^3 (1/3 - 0.21 b/a (1 - b^4/(12 a^4))) (Roark, Table 10.7, case 4,
+    a = 25 mm, b = 4 mm) and Ip = BW BH (BW^2 + BH^2)/12."""
+    A, m = BW * BH, RHO_AL * BW * BH
+    G = E_AL / (2 * (1 + NU_AL))
+    out = {}
+    for name, I in (("stiff", BW * BH ** 3 / 12), ("weak", BH * BW ** 3 / 12)):
+        out[name] = [bl ** 2 / (2 * math.pi * LX ** 2) * math.sqrt(E_AL * I / m) for bl in (1.875104, 4.694091, 7.854757)]
+    a, b = BH, BW
+    J = a * b ** 3 * (1 / 3 - 0.21 * b / a * (1 - b ** 4 / (12 * a ** 4)))
+    Ip = A * (BW ** 2 + BH ** 2) / 12
+    out["torsion"] = [(2 * n - 1) / (4 * LX) * math.sqrt(G * J / (RHO_AL * Ip)) for n in (1, 2)]
+    return out
+
+
 def write_section():
     """stringer.h5 (format section/1) for fe-prep: the 4 x 25 mm aluminium
     blade's closed-form Timoshenko section (width 4 mm along x2, height 25 mm
@@ -271,5 +309,9 @@ if __name__ == "__main__":
             write_ccx(s, False, bare=True)
     if what == "section":
         write_section()
+    if what == "stringer":
+        write_stringer_alone(sizes[0] if sizes else 32)
+        for k, v in stringer_closed_form().items():
+            print("stringer_closed_form", k, " ".join("%.5f" % x for x in v))
     if what == "--collect":
         collect(sizes)
