@@ -40,6 +40,7 @@ shells and beams it makes rigid knots.
   python3 make_decks.py section          -> stringer.h5
   python3 make_decks.py ccx 16 32 64     -> modal_16.inp static_16.inp ...
   python3 make_decks.py skin 32          -> skin_32.inp (the skin alone, modal)
+  python3 make_decks.py ccx-crossply 32 64 -> modal_crossply_32.inp ... (the [0/0/90/90]s skin)
   python3 make_decks.py stringer 32      -> stringer_alone.inp (one stringer, clamped-free)
                                             and beam theory's frequencies of it
   ccx -i modal_16; ccx -i static_16 ...  (Debian calculix-ccx 2.20-1)
@@ -51,6 +52,7 @@ import sys
 
 LX, LY, YS = 0.8, 0.5, 0.125
 PLY, ANGLES = 0.00025, (0, 45, -45, 90, 90, -45, 45, 0)
+CROSSPLY = (0, 0, 90, 90, 90, 90, 0, 0)  # the variant with a [0/0/90/90]s skin
 E1, E2, NU12, NU23, G12, G23, RHO_C = 177e9, 10.8e9, 0.27, 0.5, 7.6e9, 3.6e9, 1600.0
 E_AL, NU_AL, RHO_AL, BW, BH = 70e9, 0.33, 2700.0, 0.004, 0.025
 
@@ -107,7 +109,7 @@ def write_msh(nx):
         f.write("$EndElements\n")
 
 
-def write_ccx(nc, static, knot=False, bare=False):
+def write_ccx(nc, static, knot=False, bare=False, angles=ANGLES, tag=""):
     ncy = nc * 3 // 4
     assert ncy * 4 == nc * 3 and ncy % 4 == 0, "NC must be a multiple of 16"
     mx, my = 2 * nc, 2 * ncy  # half-element grid
@@ -123,8 +125,11 @@ def write_ccx(nc, static, knot=False, bare=False):
         name = "modal_knot_%d" % nc
     if bare:
         name = "skin_%d" % nc  # the skin alone: no stringer nodes, beams, equations or beam section
+    if tag:
+        name = name.replace("_%d" % nc, "_%s_%d" % (tag, nc))
     with open(name + ".inp", "w") as f:
-        f.write("** stiffened [0/45/-45/90]s panel with two blade stringers (make_decks.py)\n*NODE, NSET=NALL\n")
+        label = {ANGLES: "[0/45/-45/90]s", CROSSPLY: "[0/0/90/90]s"}[tuple(angles)]
+        f.write("** stiffened %s panel with two blade stringers (make_decks.py)\n*NODE, NSET=NALL\n" % label)
         for (i, j), k in nodes.items():
             x, y = xy(i, j)
             f.write("%d, %s, %s, 0\n" % (k, ccx_num(x), ccx_num(y)))
@@ -181,12 +186,12 @@ def write_ccx(nc, static, knot=False, bare=False):
                 (E1, E2, E2, NU12, NU12, NU23, G12, G12, G23))
         f.write("*DENSITY\n%g\n" % RHO_C)
         f.write("*MATERIAL, NAME=ALU\n*ELASTIC\n%g, %g\n*DENSITY\n%g\n" % (E_AL, NU_AL, RHO_AL))
-        for a in sorted(set(ANGLES)):
+        for a in sorted(set(angles)):
             c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
             f.write("*ORIENTATION, NAME=P%s, SYSTEM=RECTANGULAR\n%s, %s, 0., %s, %s, 0.\n" %
                     ((str(a).replace("-", "M"),) + tuple(ccx_num(v) for v in (c, s, -s, c))))
         f.write("*SHELL SECTION, ELSET=SKIN, COMPOSITE\n")
-        for a in ANGLES:
+        for a in angles:
             f.write("%g, , IM6, P%s\n" % (PLY, str(a).replace("-", "M")))
         # The section's 1-direction along the skin normal z (25 mm), its
         # 2-direction t x n1 = -y (4 mm): with the 1-direction along y the
@@ -271,6 +276,7 @@ def collect(ncs):
     print("# CalculiX 2.20 (Debian calculix-ccx 2.20-1) on the decks of make_decks.py;")
     print("# frequencies NC: the first 10 frequencies [Hz] of modal_NC.dat's EIGENVALUE OUTPUT;")
     print("# frequencies_knot NC: the same with the stringers on the skin's own nodes (CalculiX's rigid knots; modal_knot_NC.dat)")
+    print("# frequencies_crossply NC: the same as frequencies NC with a [0/0/90/90]s skin (modal_crossply_NC.dat)")
     print("# compliance NC: uz/Fz [m/N], rx/Mx [rad/(N m)] of the tip's rigid reference point (static_NC.dat);")
     print("#   ry/My is not measured: *RIGID BODY on the straight tip edge leaves the rotation about the edge free")
     for nc in ncs:
@@ -282,6 +288,12 @@ def collect(ncs):
             if len(p) == 5 and p[0].isdigit():
                 f.append(float(p[3]))
         print("frequencies %d %s" % (nc, " ".join("%.7g" % v for v in f[:10])))
+        try:
+            block = open("modal_crossply_%d.dat" % nc).read().split("E I G E N V A L U E   O U T P U T")[1]
+            f = [float(l.split()[3]) for l in block.splitlines() if len(l.split()) == 5 and l.split()[0].isdigit()]
+            print("frequencies_crossply %d %s" % (nc, " ".join("%.7g" % v for v in f[:10])))
+        except FileNotFoundError:
+            pass
         try:
             block = open("modal_knot_%d.dat" % nc).read().split("E I G E N V A L U E   O U T P U T")[1]
             f = [float(l.split()[3]) for l in block.splitlines() if len(l.split()) == 5 and l.split()[0].isdigit()]
@@ -307,6 +319,8 @@ if __name__ == "__main__":
             write_ccx(s, False, knot=True)
         elif what == "skin":
             write_ccx(s, False, bare=True)
+        elif what == "ccx-crossply":
+            write_ccx(s, False, angles=CROSSPLY, tag="crossply")
     if what == "section":
         write_section()
     if what == "stringer":
