@@ -50,6 +50,7 @@ def main():
     os.makedirs(scratch, exist_ok=True)
     py = sys.executable
     for args in (["make_decks.py", "ccx", "16", "32"], ["make_decks.py", "skin", "32"],
+                 ["make_decks.py", "ccx-crossply", "32"],
                  ["make_decks.py", "stringer", "32"],
                  ["make_solid.py", "32", "20", "0,45,-45,90,90,-45,45,0", "qi32", "C3D20"],
                  ["make_solid.py", "32", "20", "0,45,-45,90,90,-45,45,0", "qis32", "C3D20", "stringers"]):
