@@ -20,14 +20,10 @@ Optional, after the name:
              free), the beams' root nodes clamped: make_decks.py's stiffened
              panel with the S8R skin replaced by the layered solid (the
              mid-plane z = 0 is a ply interface, so it carries corner nodes)
-  static     with stringers: the tip face x = +0.4 and the stringers' tip
-             nodes made one *RIGID BODY with its reference point at
-             (0.4, 0, 0), loaded by Fz = 1 N (*NODE PRINT of U) instead of
-             the *FREQUENCY step
 
   python3 make_solid.py 32 20 0,45,-45,90,90,-45,45,0 qi32 && ccx -i qi32
   python3 make_solid.py 32 20 0,90,90,0 cp32 && ccx -i cp32     (a [0/90]s skin: 2 plies per brick of 0.5 mm)
-  python3 make_solid.py 32 20 0,90,90,0 cps32 C3D20 stringers   (the cross-ply stiffened panel, 3-D skin)
+  python3 make_solid.py 32 20 0,45,-45,90,90,-45,45,0 qis32 C3D20 stringers   (the stiffened panel, 3-D skin)
 """
 import math
 import sys
@@ -39,7 +35,6 @@ name=sys.argv[4]
 opts=sys.argv[5:]
 eltype=opts[0] if opts and opts[0].startswith('C3D') else 'C3D20R'
 stringers='stringers' in opts
-static='static' in opts
 LX,LY,H=0.8,0.5,0.002
 YS,BW,BH=0.125,0.004,0.025
 assert not stringers or (NZ%2==0 and NY%4==0), "stringers need a mid-plane interface (even brick count) and NY a multiple of 4"
@@ -77,7 +72,6 @@ if stringers:
   for j in (NY//2,3*NY//2):
     for i in range(2*NX+1):
       beam[(i,j)]=nn+1+len(beam)
-  ref=nn+len(beam)+1
   f.write('*NODE, NSET=NSTR\n')
   for (i,j),n in beam.items():
     f.write('%d, %s, %s, 0\n'%((n,)+tuple(ccx_num(v) for v in xyz(i,j,NZ)[:2])))
@@ -107,13 +101,4 @@ if stringers:
 f.write('*BOUNDARY\nROOT, 1, 3\n')
 if stringers:
   f.write('BROOT, 1, 6\n')
-if not static:
-  f.write('*STEP\n*FREQUENCY\n%d\n*END STEP\n'%(12 if stringers else 10))
-else:
-  assert stringers
-  # the stringers' tip nodes are already tied to the skin: keep them out of the rigid body
-  tip=[n for (i,j,k),n in nodes.items() if i==2*NX]
-  nset('TIP',tip)
-  f.write('*NODE, NSET=REFS\n%d, 0.4, 0, 0\n%d, 0.4, 0, 0\n'%(ref,ref+1))
-  f.write('*RIGID BODY, NSET=TIP, REF NODE=%d, ROT NODE=%d\n'%(ref,ref+1))
-  f.write('*STEP\n*STATIC\n*CLOAD\n%d, 3, 1.\n*NODE PRINT, NSET=REFS\nU\n*END STEP\n'%ref)
+f.write('*STEP\n*FREQUENCY\n%d\n*END STEP\n'%(12 if stringers else 10))
