@@ -350,7 +350,7 @@ std::string stiffenedSkinLibrary(const std::vector<int>& angles = {0, 45, -45, 9
 // stringers sharing the skin's nodes with their torsion taken out of the
 // section (stringer.h5), which is what a translation-only tie means for them.
 // Measured (fe-prep 64 against CalculiX 64): f1..f10 -0.12, -0.02, +0.13,
-// +0.23, +0.08, +0.04, +0.10, +0.31, +0.26, +0.23 %, uz/Fz +0.16 %. What is
+// +0.23, +0.08, +0.04, +0.10, +0.30, +0.26, +0.23 %, uz/Fz +0.16 %. What is
 // left is both sides' meshes: fe-prep 64 -> 128 moves f8-f10 by -0.14 to
 // -0.21 % (O(h^2), so about 0.28 % of f10 is still mesh on 64 x 40; on
 // 128 x 80 all ten are within 0.14 % of CalculiX 64), CalculiX 32 -> 64 by
