@@ -18,6 +18,7 @@ The stiffness and mass are Kronecker products of 1-D Gauss-Legendre integrals
 (the laminate is uniform). Numpy and scipy only.
   python3 ritz_skin.py clt 18
   python3 ritz_skin.py fsdt 34 [k]
+  python3 ritz_skin.py clt 18 --angles 0,0,90,90,90,90,0,0   (another stacking of the 8 plies)
 """
 import math
 import sys
@@ -116,6 +117,11 @@ def fsdt(p, kshear=5 / 6, rotary=True, count=10, py=None):
     return np.sqrt(ev) / (2 * math.pi)
 
 if __name__ == "__main__":
+    if "--angles" in sys.argv:
+        k = sys.argv.index("--angles")
+        ANG = [float(a) for a in sys.argv[k + 1].split(",")]
+        assert len(ANG) == 8, "8 plies of 0.25 mm"
+        del sys.argv[k:k + 2]
     kind = sys.argv[1]; p = int(sys.argv[2])
     if kind == "clt":
         f = clt(p)
