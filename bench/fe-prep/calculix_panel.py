@@ -24,13 +24,30 @@ areas (an S8R's area over its eight nodes, summed over the node's elements).
 Rows are put in reduced row echelon form so each dependent DOF (first term)
 is a patch translation used in no other equation; u_P stays independent, so
 it can be fixed (*BOUNDARY) or retained. Prints the node, element and DOF
-counts."""
-import sys
+counts.
+
+  ... --msh PANEL.msh
+      also writes fe-prep's mesh of the same panel at equal DOF: a gmsh 2.2
+      .msh (physical surface "panel") of a structured grid of mx x my
+      rectangles, each cut into two three-node triangles (diagonals
+      alternating in a checkerboard, so the grid has no preferred direction),
+      with (mx + 1)(my + 1) as close as the grid allows to the S8R grid's node
+      count (corners and mid-sides, 6 DOF each in both codes) and cells
+      within 10 % of square. fe-prep reads it through `mesh: {file}` (no
+      meshing inside its timed run, as CalculiX's deck). Prints its counts."""
+import argparse
 
 import numpy as np
 
-nx, ny, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
-cb_radius = float(sys.argv[5]) if len(sys.argv) > 5 and sys.argv[4] == "--craig-bampton" else None
+ap = argparse.ArgumentParser()
+ap.add_argument("nx", type=int)
+ap.add_argument("ny", type=int)
+ap.add_argument("out")
+ap.add_argument("--craig-bampton", type=float, default=None, metavar="R")
+ap.add_argument("--msh", default=None)
+args = ap.parse_args()
+nx, ny, out = args.nx, args.ny, args.out
+cb_radius = args.craig_bampton
 L, W = 2.0, 1.3
 POINTS = [(x, y) for x in (-0.9, -0.3, 0.3, 0.9) for y in (-0.55, 0.55)]
 # Node grid (2 nx + 1) x (2 ny + 1) without the quads' centre points.
@@ -133,3 +150,33 @@ else:
 open(out, "w").write("\n".join(lines) + "\n")
 shell = 6 * (n - (8 if cb_radius is not None else 0))
 print(f"{n} nodes, {e} S8R elements, {shell} shell DOF")
+
+if args.msh:
+    target = (2 * nx + 1) * (2 * ny + 1) - nx * ny
+    my0 = np.sqrt(target * W / L)
+    best = None
+    for my in range(max(1, int(0.85 * my0)), int(1.15 * my0) + 2):
+        mx = max(1, round(target / (my + 1)) - 1)
+        if not 0.9 <= (L / mx) / (W / my) <= 1.1:
+            continue
+        cand = (abs((mx + 1) * (my + 1) - target), mx, my)
+        best = cand if best is None or cand < best else best
+    _, mx, my = best
+    with open(args.msh, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"panel\"\n$EndPhysicalNames\n")
+        f.write(f"$Nodes\n{(mx + 1) * (my + 1)}\n")
+        f.write("".join(f"{j * (mx + 1) + i + 1} {-L / 2 + L * i / mx:.12g} {-W / 2 + W * j / my:.12g} 0\n"
+                        for j in range(my + 1) for i in range(mx + 1)))
+        f.write(f"$EndNodes\n$Elements\n{2 * mx * my}\n")
+        rows, t = [], 0
+        for j in range(my):
+            for i in range(mx):
+                a = j * (mx + 1) + i + 1
+                b, c, d = a + 1, a + mx + 2, a + mx + 1          # counter-clockwise a b c d
+                tris = ((a, b, c), (a, c, d)) if (i + j) % 2 == 0 else ((a, b, d), (b, c, d))
+                for tri in tris:
+                    t += 1
+                    rows.append(f"{t} 2 2 1 1 {tri[0]} {tri[1]} {tri[2]}\n")
+        f.write("".join(rows))
+        f.write("$EndElements\n")
+    print(f"{(mx + 1) * (my + 1)} nodes, {2 * mx * my} triangles ({mx} x {my}), {6 * (mx + 1) * (my + 1)} shell DOF")

@@ -2,11 +2,15 @@
 # fe-prep against CalculiX 2.20 (`ccx`, S8R shells, SPOOLES) on the benchmark
 # panel, free-free and Craig-Bampton, side by side at each size
 # (docs/benchmarks.md, fe-prep against CalculiX). The panel: 2.0 x 1.3 m, 2 mm,
-# E = 159 GPa, nu = 0.38, rho = 1610; fe-prep meshes it with DST triangles
-# (6 DOF a node), CalculiX with a structured S8R grid (`calculix_panel.py`).
-# Both models have the requested number of shell DOF (equal DOF, 6 a node):
-# the sizes are the user's model sizes, and both are converged to < 0.1 % in
-# f1 from 1e4 DOF up (the table shows it).
+# E = 159 GPa, nu = 0.38, rho = 1610. Both codes get their mesh as a file
+# written by `calculix_panel.py` before the timed runs: CalculiX a structured
+# S8R grid (its deck), fe-prep (MESH=file, the default) a structured grid of
+# DST triangles with as many nodes as the S8R grid has (equal shell DOF, 6 a
+# node; a gmsh 2.2 .msh read through `mesh: {file}`). MESH=gmsh instead has
+# fe-prep mesh the rectangle itself inside its timed run (gmsh, unstructured
+# DST at the requested DOF), as the earlier tables did. The sizes are the
+# user's model sizes, and both are converged to < 0.1 % in f1 from 1e4 DOF up
+# (the table shows it).
 #   free-free:     fe-prep `reference: free`, 20 elastic modes;
 #                  ccx *FREQUENCY, 26 modes (its 6 rigid ones + 20).
 #   Craig-Bampton: 8 `distributing` interfaces on the mid-surface nodes within
@@ -21,12 +25,16 @@
 # (fe-prep from FEPREP_LOCK_DOF = 4e5 DOF, ~6.5 kB a DOF; CalculiX from
 # CCX_LOCK_DOF = 2e5, ~13 kB a DOF) run under `flock $BIGRUN_LOCK` (default
 # /work/tmp/bigrun.lock if that directory exists) so that big runs on a shared
-# machine queue. CalculiX runs up to CCX_MAX_DOF (default 4e5; at 1e6 it needs
+# machine queue; BIGRUN_LOCK=none when the whole script already runs under that
+# lock. CalculiX runs up to CCX_MAX_DOF (default 4e5; at 1e6 it needs
 # ~13 GB); beyond, its row is an estimate from a power-law fit of its measured
 # sizes >= 1e4 DOF, marked "est.". The 1-minute load average is printed with
 # each row: on a loaded machine CPU seconds are the figure, not wall time.
 #   bench/fe-prep/compare.sh BUILD_DIR [DOF ...]   (default 1e3 1e4 1e5 3e5 1e6)
-#   REDUCTIONS="free craig_bampton" (default both), KEEP=DIR keeps the outputs
+#   unattended at the large sizes, CalculiX measured too (~13 GB at 1e6):
+#   CCX_MAX_DOF=2000000 bench/fe-prep/compare.sh build 300000 1000000
+#   REDUCTIONS="free craig_bampton" (default both), MESH=file|gmsh (default file),
+#   KEEP=DIR keeps the outputs
 #   (and the CalculiX rows the 1e6 estimate is fitted to, across calls).
 set -euo pipefail
 build=${1:?usage: compare.sh BUILD_DIR [DOF ...]}
@@ -42,7 +50,10 @@ feprep_lock_dof=${FEPREP_LOCK_DOF:-400000}
 ccx_lock_dof=${CCX_LOCK_DOF:-200000}
 lock=${BIGRUN_LOCK:-}
 [ -z "$lock" ] && [ -d /work/tmp ] && lock=/work/tmp/bigrun.lock
+[ "$lock" = none ] && lock=""   # the caller holds the lock already (a nested flock would wait forever)
 reductions=${REDUCTIONS:-free craig_bampton}
+mesh_mode=${MESH:-file}
+case "$mesh_mode" in file|gmsh) ;; *) echo "compare.sh: MESH=$mesh_mode: expected file or gmsh" >&2; exit 2 ;; esac
 if [ -n "${KEEP:-}" ]; then work=$KEEP; mkdir -p "$work"; else work=$(mktemp -d); trap 'rm -rf "$work"' EXIT; fi
 export OMP_NUM_THREADS=1 FLEXCOMP_QUIET=1
 # Both codes on the same BLAS: fe-prep links serial OpenBLAS when it is
@@ -53,6 +64,7 @@ blas=$(ldd "$feprep" | awk '/libopenblas/ { print $3; exit }')
 ccx_env=(env)
 [ -n "$blas" ] && ccx_env=(env LD_PRELOAD="$blas")
 echo "BLAS: ${blas:-system libblas.so.3} (both codes)"
+echo "fe-prep's mesh: $([ "$mesh_mode" = file ] && echo "structured DST grid read from a .msh written before the run (equal DOF to the S8R deck)" || echo "gmsh, inside fe-prep's run")"
 echo
 
 # "wall_s cpu_s peak_MB" of a command run in directory $1, stdout to $2.
@@ -72,7 +84,13 @@ feprep_yaml() {  # dof reduction radius
   echo "  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}"
   echo "body:"
   echo "  name: bench"
-  echo "  shell: {rectangle: {length: 2.0, width: 1.3}, material: cfrp_iso, thickness: 0.002, element: dst, mesh: {size: $h, max_triangles: 5000000}}"
+  if [ "$mesh_mode" = file ]; then
+    echo "  mesh: {file: panel.msh}"
+    echo "  regions:"
+    echo "    panel: {shell: {material: cfrp_iso, thickness: 0.002, element: dst}}"
+  else
+    echo "  shell: {rectangle: {length: 2.0, width: 1.3}, material: cfrp_iso, thickness: 0.002, element: dst, mesh: {size: $h, max_triangles: 5000000}}"
+  fi
   if [ "$2" = free ]; then
     echo "  reference: free"
     echo "  modes: 20"
@@ -114,6 +132,10 @@ for dof in "${sizes[@]}"; do
   for red in $reductions; do
     d="$work/$dof-$red"; mkdir -p "$d"
     feprep_yaml "$dof" "$red" "$radius" > "$d/panel.yaml"
+    # Both meshes (the S8R deck, fe-prep's .msh) written before either timed run.
+    cb_arg=(); [ "$red" = free ] || cb_arg=(--craig-bampton "$radius")
+    msh_arg=(); [ "$mesh_mode" = file ] && msh_arg=(--msh "$d/panel.msh")
+    cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" "${cb_arg[@]}" "${msh_arg[@]}" | awk 'NR == 1 {print $(NF-2)}')
     l0=$(load)
     read -r f_wall f_cpu f_mem <<< "$(timed "$d" "$d/fe.txt" "$big_fe" "$feprep" -q panel.yaml -o panel.h5)"
     fdof=$(grep -o '[0-9]* DOF,' "$d/fe.txt" | head -1 | cut -d' ' -f1)
@@ -124,13 +146,8 @@ for dof in "${sizes[@]}"; do
     else
       ff=$($py -c "import h5py, numpy as np; l = np.sqrt(h5py.File('$d/panel.h5')['reduction/kept_eigenvalues'][:]) / (2 * np.pi); print(f'{l[0]:.4f}, {l[-1]:.3f}')")
     fi
-    rm -f "$d/panel.h5" "$d/panel.xdmf"
+    rm -f "$d/panel.h5" "$d/panel.xdmf" "$d/panel.msh"
     if [ "$dof" -le "$ccx_max" ]; then
-      if [ "$red" = free ]; then
-        cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" | awk '{print $(NF-2)}')
-      else
-        cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" --craig-bampton "$radius" | awk '{print $(NF-2)}')
-      fi
       read -r c_wall c_cpu c_mem <<< "$(timed "$d" "$d/c.txt" "$big_ccx" "${ccx_env[@]}" ccx -i c)"
       # Eigenvalue table of the .dat: the first step's modes (free: skip the 6 rigid ones).
       cf=$(awk -v red="$red" '/E I G E N V A L U E   O U T P U T/ { on++ } /P A R T I C/ { on = (on == 1 ? -1 : on) }
@@ -141,7 +158,6 @@ for dof in "${sizes[@]}"; do
       ratio=$(awk -v a="$f_cpu" -v b="$c_cpu" -v m="$f_mem" -v n="$c_mem" 'BEGIN{printf "%.3f | %.3f", a / b, m / n}')
       ccols="$cdof | $c_cpu | $c_wall | $c_mem | $ratio | $ff | $cf"
     else
-      cdof=$(awk -v nx="$nx" -v ny="$ny" 'BEGIN{print 6 * ((2*nx+1)*(2*ny+1) - nx*ny)}')
       read -r e_cpu e_mem bc bm <<< "$(estimate "$red" "$cdof")"
       ratio=$(awk -v a="$f_cpu" -v b="$e_cpu" -v m="$f_mem" -v n="$e_mem" 'BEGIN{ if (b == "-") print "- | -"; else printf "%.3f (est.) | %.3f (est.)", a / b, m / n}')
       ccols="$cdof | $e_cpu (est., DOF^$bc) | - | $e_mem (est., DOF^$bm) | $ratio | $ff | not run"
