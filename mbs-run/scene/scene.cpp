@@ -411,6 +411,29 @@ void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
   }
 }
 
+// A contact's surface on a flexible `body`: every shell triangle of its mesh,
+// each node moving with its mode shapes, `half_thickness` the shell's half
+// thickness about the mid-surface.
+void parseSurface(const Model& m, int body, const InputNode& sf, ForceElement& fe) {
+  sf.allowKeys({"half_thickness"});
+  const Body& b = m.bodies[body];
+  if (!b.flex) sf.fail("a surface is a flexible body's shell mesh, but body '" + b.name + "' is rigid");
+  fe.edge_half_thickness = sf.has("half_thickness") ? sf["half_thickness"].asNonNegative() : 0.0;
+  const fc::FlexBodyFile f = readBodyMesh(b, sf);
+  for (const auto& [kind, el] : f.body.elements)
+    if (el.cols() == 3)
+      for (Eigen::Index e = 0; e < el.rows(); ++e)
+        fe.surface_triangles.push_back({int(el(e, 0)), int(el(e, 1)), int(el(e, 2))});
+  if (fe.surface_triangles.empty()) sf.fail("body '" + b.name + "' has no shell triangles in its file");
+  for (Eigen::Index k = 0; k < f.body.nodes.rows(); ++k) {
+    fe.edge_points.push_back(f.body.nodes.row(k).transpose());
+    PointShapes sh;
+    sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
+    sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
+    fe.edge_shapes.push_back(sh);
+  }
+}
+
 // The plane of a contact on body j: {point, normal} with an optional
 // rectangle patch {axis, half_sizes}.
 void parsePlane(const Model& m, const InputNode& pl, ForceElement& fe) {
@@ -436,8 +459,8 @@ void parsePlane(const Model& m, const InputNode& pl, ForceElement& fe) {
 // a segment of the first against an edge of the second, or an edge of the
 // first against a plane of the second (force_elements.h, contactState).
 void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
-  f.allowKeys({"name", "type", "bodies", "point", "plane", "segment", "edge", "stiffness", "exponent", "restitution",
-               "impact_speed", "radius", "enabled"});
+  f.allowKeys({"name", "type", "bodies", "point", "plane", "segment", "edge", "surface", "stiffness", "exponent",
+               "restitution", "impact_speed", "radius", "enabled"});
   fe.type = ForceType::Contact;
   const InputNode b = f["bodies"];
   if (!b.isSequence() || b.size() != 2)
@@ -448,10 +471,13 @@ void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
   const int firsts = int(f.has("point")) + int(f.has("segment")) + int(f.has("edge") && !f.has("segment"));
   if (firsts != 1)
     f.fail("expected one of: 'point' and 'plane' (point against plane), 'segment' and 'edge' (segment against "
-           "edge), 'edge' and 'plane' (edge against plane)");
+           "edge), 'segment' and 'surface' (segment against a flexible body's shell triangles), 'edge' and 'plane' "
+           "(edge against plane)");
+  if (f.has("surface") && !f.has("segment")) f["surface"].fail("a 'surface' is met by a 'segment' of the first body");
   if (f.has("segment")) {
     fe.contact_kind = ForceElement::ContactKind::SegmentEdge;
-    if (f.has("plane")) f["plane"].fail("a segment acts against an 'edge', not a plane");
+    if (f.has("plane")) f["plane"].fail("a segment acts against an 'edge' or a 'surface', not a plane");
+    if (f.has("surface") && f.has("edge")) f["surface"].fail("expected either 'edge' or 'surface', not both");
     if (f.has("radius")) f["radius"].fail("a segment's radius is segment: {radius}");
     const InputNode sg = f["segment"];
     sg.allowKeys({"points", "radius"});
@@ -461,7 +487,12 @@ void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
     fe.point_i2 = pointRef(m, fe.body_i, pts.at(1), fe.shapes_i2);
     if ((fe.point_i2 - fe.point_i).norm() == 0.0) pts.fail("expected two distinct end points");
     fe.segment_radius = sg.has("radius") ? sg["radius"].asNonNegative() : 0.0;
-    parseEdge(m, fe.body_j, f["edge"], fe);
+    if (f.has("surface")) {
+      fe.contact_kind = ForceElement::ContactKind::SegmentSurface;
+      parseSurface(m, fe.body_j, f["surface"], fe);
+    } else {
+      parseEdge(m, fe.body_j, f["edge"], fe);
+    }
   } else if (f.has("edge")) {
     fe.contact_kind = ForceElement::ContactKind::EdgePlane;
     parseEdge(m, fe.body_i, f["edge"], fe);
