@@ -9,6 +9,7 @@
 #include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/run/margins.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/mechanics/force_elements.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/run/run_policy.h"
@@ -411,27 +412,54 @@ void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
   }
 }
 
-// A contact's surface on a flexible `body`: every shell triangle of its mesh,
-// each node moving with its mode shapes, `half_thickness` the shell's half
-// thickness about the mid-surface.
+// A contact's surface on a flexible `body`: its mesh's shell triangles (those
+// with a node within `near: {from, to, distance}` of that line, body
+// coordinates, when given: a fine mesh's triangles far from where the contact
+// can act cost time at every evaluation), each node moving with its mode
+// shapes; `half_thickness` the shell's half thickness about the mid-surface.
 void parseSurface(const Model& m, int body, const InputNode& sf, ForceElement& fe) {
-  sf.allowKeys({"half_thickness"});
+  sf.allowKeys({"half_thickness", "near"});
   const Body& b = m.bodies[body];
   if (!b.flex) sf.fail("a surface is a flexible body's shell mesh, but body '" + b.name + "' is rigid");
   fe.edge_half_thickness = sf.has("half_thickness") ? sf["half_thickness"].asNonNegative() : 0.0;
   const fc::FlexBodyFile f = readBodyMesh(b, sf);
-  for (const auto& [kind, el] : f.body.elements)
-    if (el.cols() == 3)
-      for (Eigen::Index e = 0; e < el.rows(); ++e)
-        fe.surface_triangles.push_back({int(el(e, 0)), int(el(e, 1)), int(el(e, 2))});
-  if (fe.surface_triangles.empty()) sf.fail("body '" + b.name + "' has no shell triangles in its file");
-  for (Eigen::Index k = 0; k < f.body.nodes.rows(); ++k) {
-    fe.edge_points.push_back(f.body.nodes.row(k).transpose());
-    PointShapes sh;
-    sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
-    sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
-    fe.edge_shapes.push_back(sh);
+  const Eigen::Index n = f.body.nodes.rows();
+  std::vector<char> close(n, 1);
+  if (sf.has("near")) {
+    const InputNode nr = sf["near"];
+    nr.allowKeys({"from", "to", "distance"});
+    const Vector3d from = vec3(nr["from"], kMaxLength, "m"), to = vec3(nr["to"], kMaxLength, "m");
+    const double dist = nr["distance"].asNonNegative();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      double s = 0.0, t = 0.0;
+      const Vector3d x = f.body.nodes.row(k).transpose();
+      closestSegmentPoints(x, x, from, to, s, t);
+      close[k] = (x - (from + t * (to - from))).norm() <= dist;
+    }
   }
+  std::vector<int> index(n, -1);  // mesh node -> the contact's node
+  for (const auto& [kind, el] : f.body.elements) {
+    if (el.cols() != 3) continue;
+    for (Eigen::Index e = 0; e < el.rows(); ++e) {
+      if (!close[el(e, 0)] && !close[el(e, 1)] && !close[el(e, 2)]) continue;
+      std::array<int, 3> t{};
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Index k = el(e, c);
+        if (index[k] < 0) {
+          index[k] = int(fe.edge_points.size());
+          fe.edge_points.push_back(f.body.nodes.row(k).transpose());
+          PointShapes sh;
+          sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
+          sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
+          fe.edge_shapes.push_back(sh);
+        }
+        t[c] = index[k];
+      }
+      fe.surface_triangles.push_back(t);
+    }
+  }
+  if (fe.surface_triangles.empty())
+    sf.fail("body '" + b.name + "' has no shell triangles" + (sf.has("near") ? " near that line" : " in its file"));
 }
 
 // The plane of a contact on body j: {point, normal} with an optional
