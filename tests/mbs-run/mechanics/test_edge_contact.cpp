@@ -11,6 +11,8 @@
 //   m_eff = 1 / (1/m + a^2 / I) of a point a off the centre (Goldsmith,
 //   Impact, 1960, ch. 2): v' = v0 (2 m_eff / m - 1), omega' = 2 m_eff v0 a / I;
 //   with damping, the Lankarani-Nikravesh restitution as the point contact's;
+// - a panel's face sloping across another panel's rim between its nodes (the
+//   monitor's 0, the rim's distance to the face by hand);
 // - the closest points of a segment and a triangle by hand (through the face,
 //   an end over the face, beside an edge, past a vertex), with the
 //   barycentric weights that share the force among the triangle's nodes;
@@ -26,6 +28,7 @@
 #include "beam_body.h"
 #include "helpers.h"
 #include "mbs-run/mechanics/force_elements.h"
+#include "mbs-run/monitors/distance.h"
 #include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
@@ -90,6 +93,33 @@ TEST(SurfaceContact, ClosestPointsOfASegmentAndATriangleByHand) {
               1e-15);
   EXPECT_NEAR(s, 0.5, 1e-15);
   EXPECT_NEAR((l - Vector3d(0, 0.5, 0.5)).norm(), 0.0, 1e-15);
+}
+
+TEST(SurfaceContact, FaceAcrossAPanelRimByHand) {
+  // The SAR lay-up 1 case in miniature: a triangle of a bent panel whose two
+  // nodes A, B lie 2 mm above a 2.0 x 1.3 m mid-plane rectangle (z = 0), 20 mm
+  // inside its rim x = -1, and whose third node C hangs below it outside the
+  // rim: z = 0.002 - (0.04 / 0.3)(-0.98 - x), so at the rim the face is
+  // 0.002 - 0.02 (0.04 / 0.3) = -2/3 mm, below the mid-plane. The monitor's
+  // distance is 0 (the face crosses the rectangle at x = -0.985), although
+  // every node is 2 mm off it; the rim as a segment against the face is the
+  // line's distance to the plane, (2/3 mm) cos(atan(0.04 / 0.3)).
+  BodyGeometry tri;
+  tri.vertices.resize(3, 3);
+  tri.vertices << -0.98, -0.98, -1.28, 0.1, -0.1, 0.0, 0.002, 0.002, -0.038;
+  tri.triangles.push_back({0, 1, 2});
+  const BodyGeometry rect = rectangleGeometry(2.0, 1.3);
+  EXPECT_EQ(geometryDistance(tri, tri.vertices, rect, rect.vertices), 0.0);
+  double s = -1;
+  Vector3d l;
+  const Vector3d a = tri.vertices.col(0), b = tri.vertices.col(1), c = tri.vertices.col(2);
+  const Vector3d p(-1.0, -0.65, 0.0), q(-1.0, 0.65, 0.0);
+  const double d = closestSegmentTrianglePoints(p, q, a, b, c, s, l);
+  const double ref = (2.0e-3 / 3.0) * std::cos(std::atan(0.04 / 0.3));
+  EXPECT_NEAR(d, ref, 1e-15);
+  EXPECT_NEAR(((p + s * (q - p)) - (l[0] * a + l[1] * b + l[2] * c)).norm(), d, 1e-15);
+  EXPECT_NEAR(l.sum(), 1.0, 1e-15);
+  EXPECT_GE(l.minCoeff(), 0.0);
 }
 
 // A fixed ground with an edge along x (points [-1, 0, 0] and [1, 0, 0]).
