@@ -267,6 +267,61 @@ ContactState segmentEdge(const ForceElement& fe, const std::vector<BodyPose>& P)
   return cs;
 }
 
+// The segment [x_a, x_b] of body i (radius r) against the shell triangles of
+// body j (half thickness h), their nodes moving with their mode shapes: the
+// closest points over the triangles, c_i = (1 - s) x_a + s x_b on the segment
+// and c_j = sum_k lambda_k x_k on the nearest triangle (barycentric weights
+// lambda), d = r + h - |c_i - c_j|, n from c_j to c_i. As in segmentEdge the
+// points minimise the distance, so its gradient is theirs:
+//   dd/dv_i = -n^T ((1 - s) J_a + s J_b),  dd/dv_j = n^T sum_k lambda_k J_k,
+// F n at the segment's ends, -F n at the triangle's nodes in the weights
+// lambda. A triangle whose box lies farther from the segment's box than the
+// best distance so far cannot hold the minimum and is skipped.
+ContactState segmentSurface(const ForceElement& fe, const std::vector<BodyPose>& P) {
+  const BodyPose &a = P[fe.body_i], &b = P[fe.body_j];
+  const Vector3d xa = pointPosition(a, fe.point_i, fe.shapes_i), xb = pointPosition(a, fe.point_i2, fe.shapes_i2);
+  const std::size_t nn = fe.edge_points.size();
+  std::vector<Vector3d> x(nn);
+  for (std::size_t k = 0; k < nn; ++k) x[k] = pointPosition(b, fe.edge_points[k], fe.edge_shapes[k]);
+  const Vector3d slo = xa.cwiseMin(xb), shi = xa.cwiseMax(xb);
+  double best = std::numeric_limits<double>::infinity(), s = 0.0;
+  Vector3d lambda(1, 0, 0);
+  std::size_t tb = 0;
+  for (std::size_t e = 0; e < fe.surface_triangles.size(); ++e) {
+    const auto& t = fe.surface_triangles[e];
+    const Vector3d &p0 = x[t[0]], &p1 = x[t[1]], &p2 = x[t[2]];
+    const Vector3d lo = p0.cwiseMin(p1).cwiseMin(p2), hi = p0.cwiseMax(p1).cwiseMax(p2);
+    const Vector3d gap = (lo - shi).cwiseMax(slo - hi).cwiseMax(0.0);
+    if (gap.norm() > best) continue;
+    double se = 0.0;
+    Vector3d le;
+    const double de = closestSegmentTrianglePoints(xa, xb, p0, p1, p2, se, le);
+    if (de < best) best = de, s = se, lambda = le, tb = e;
+  }
+  ContactState cs;
+  const auto& t = fe.surface_triangles[tb];
+  const Vector3d ci = xa + s * (xb - xa), cj = lambda[0] * x[t[0]] + lambda[1] * x[t[1]] + lambda[2] * x[t[2]];
+  Vector3d n = ci - cj;
+  if (n.norm() > 0.0) {
+    n.normalize();
+  } else {  // through the triangle: its normal, towards the segment's farther end
+    n = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).normalized();
+    const Vector3d far = (xa - cj).norm() > (xb - cj).norm() ? xa : xb;
+    if (n.dot(far - cj) < 0.0) n = -n;
+  }
+  cs.normal = n;
+  cs.penetration = fe.segment_radius + fe.edge_half_thickness - best;
+  const Attached pa = attachedPoint(a, fe.point_i, fe.shapes_i.psi), pb = attachedPoint(a, fe.point_i2, fe.shapes_i2.psi);
+  cs.grad_i = -n.transpose() * ((1.0 - s) * pa.J + s * pb.J);
+  cs.grad_j.setZero(b.nv());
+  for (int k = 0; k < 3; ++k)
+    if (lambda[k] != 0.0) cs.grad_j += lambda[k] * (n.transpose() * attachedPoint(b, fe.edge_points[t[k]], fe.edge_shapes[t[k]].psi).J);
+  cs.rate = cs.grad_i.dot(velocityOf(a)) + cs.grad_j.dot(velocityOf(b));
+  cs.touching = cs.penetration > 0.0;
+  applyLaw(fe, cs);
+  return cs;
+}
+
 // Every edge point of body i against the plane (patch) of body j, each with
 // its own penetration and force: the sums of the forces, powers and
 // potentials; the reported penetration, rate and normal are the deepest
@@ -331,10 +386,96 @@ void closestSegmentPoints(const Vector3d& p1, const Vector3d& q1, const Vector3d
   }
 }
 
+Vector3d closestTrianglePoint(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c,
+                              Vector3d& bary) {
+  // Ericson 5.1.5: Voronoi regions of the vertices, edges and face.
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) {
+    bary = Vector3d(1, 0, 0);
+    return a;
+  }
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) {
+    bary = Vector3d(0, 1, 0);
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    bary = Vector3d(1 - v, v, 0);
+    return a + v * ab;
+  }
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) {
+    bary = Vector3d(0, 0, 1);
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    bary = Vector3d(1 - w, 0, w);
+    return a + w * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    bary = Vector3d(0, 1 - w, w);
+    return b + w * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  bary = Vector3d(1 - v - w, v, w);
+  return a + ab * v + ac * w;
+}
+
+double closestSegmentTrianglePoints(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b,
+                                    const Vector3d& c, double& s, Vector3d& bary) {
+  // Crossing: the segment's ends on opposite sides of the plane and the
+  // crossing point inside the triangle (signed areas of its sub-triangles).
+  const Vector3d n = (b - a).cross(c - a);
+  const double sp = n.dot(p - a), sq = n.dot(q - a);
+  if (((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) && sp != sq) {
+    const double sx = sp / (sp - sq);
+    const Vector3d x = p + sx * (q - p);
+    const double u = n.dot((b - a).cross(x - a)), v = n.dot((c - b).cross(x - b)), w = n.dot((a - c).cross(x - c));
+    if ((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0)) {
+      s = sx;
+      const double sum = u + v + w;
+      bary = sum != 0.0 ? Vector3d(v / sum, w / sum, u / sum) : Vector3d(1, 0, 0);
+      return 0.0;
+    }
+  }
+  // Otherwise the closest points lie on the segment's ends or on an edge.
+  Vector3d bk;
+  double best = (p - closestTrianglePoint(p, a, b, c, bk)).norm();
+  s = 0.0;
+  bary = bk;
+  const double dq = (q - closestTrianglePoint(q, a, b, c, bk)).norm();
+  if (dq < best) best = dq, s = 1.0, bary = bk;
+  const Vector3d* v[3] = {&a, &b, &c};
+  for (int e = 0; e < 3; ++e) {
+    const Vector3d &e0 = *v[e], &e1 = *v[(e + 1) % 3];
+    double se = 0.0, te = 0.0;
+    closestSegmentPoints(p, q, e0, e1, se, te);
+    const double de = ((p + se * (q - p)) - (e0 + te * (e1 - e0))).norm();
+    if (de < best) {
+      best = de, s = se;
+      bary.setZero();
+      bary[e] = 1.0 - te;
+      bary[(e + 1) % 3] = te;
+    }
+  }
+  return best;
+}
+
 ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P) {
   switch (fe.contact_kind) {
     case ForceElement::ContactKind::SegmentEdge: return segmentEdge(fe, P);
     case ForceElement::ContactKind::EdgePlane: return edgePlane(fe, P);
+    case ForceElement::ContactKind::SegmentSurface: return segmentSurface(fe, P);
     case ForceElement::ContactKind::PointPlane: break;
   }
   return pointPlane(fe, P, fe.point_i, fe.shapes_i, 0.0);

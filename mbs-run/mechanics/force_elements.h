@@ -90,6 +90,22 @@ ContactState contactState(const ForceElement& fe, const std::vector<BodyPose>& P
 void closestSegmentPoints(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
                           const Eigen::Vector3d& q2, double& s, double& t);
 
+// The point of triangle (a, b, c) closest to p (Ericson 5.1.5, Voronoi regions
+// of the vertices, edges and face), and its barycentric weights: the point is
+// bary(0) a + bary(1) b + bary(2) c.
+Eigen::Vector3d closestTrianglePoint(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                     const Eigen::Vector3d& c, Eigen::Vector3d& bary);
+
+// The closest points of the segment [p, q] and the triangle (a, b, c): the
+// segment's point p + s (q - p) and the triangle's with barycentric weights
+// `bary`; returns their distance (0 where the segment passes through the
+// triangle, s and bary then the crossing point's). The smallest of the
+// segment's ends against the triangle and the segment against its three
+// edges, after the crossing test (Ericson 5.1.9, 5.1.5, 5.3.6).
+double closestSegmentTrianglePoints(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                                    const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& s,
+                                    Eigen::Vector3d& bary);
+
 // What the results report as the contact's penetration: d inside the patch,
 // and outside it minus P's distance to the patch disk, -hypot(outside, d)
 // (negative: apart), so that a point far off the patch does not show a

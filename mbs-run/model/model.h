@@ -156,10 +156,12 @@ struct ForceElement {
   // Which contact (force_elements.h): point i against the plane of j; the
   // segment from point_i to point_i2 of body i (a rod's axis, `segment_radius`
   // its radius) against the edge polyline `edge_points` of body j; or each
-  // edge point of body i against the plane of j. The edge's points are
+  // edge point of body i against the plane of j; or the segment of body i
+  // against the shell triangles `surface_triangles` of body j's mesh (indices
+  // into `edge_points`, which then hold all its nodes). The edge's points are
   // interfaces or mesh nodes with their shapes, `edge_half_thickness` the
   // panel's half thickness about them.
-  enum class ContactKind { PointPlane, SegmentEdge, EdgePlane };
+  enum class ContactKind { PointPlane, SegmentEdge, EdgePlane, SegmentSurface };
   ContactKind contact_kind = ContactKind::PointPlane;
   Vector3d point_i2 = Vector3d::Zero();
   PointShapes shapes_i2;
@@ -167,6 +169,7 @@ struct ForceElement {
   std::vector<Vector3d> edge_points;
   std::vector<PointShapes> edge_shapes;
   double edge_half_thickness = 0.0;
+  std::vector<std::array<int, 3>> surface_triangles;
 };
 
 struct Event {

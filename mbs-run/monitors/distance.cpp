@@ -18,45 +18,16 @@ double segmentSegmentDistance(const Vector3d& p1, const Vector3d& q1, const Vect
 }
 
 Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-  // Ericson 5.1.5: Voronoi regions of the vertices, edges and face.
-  const Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  Vector3d bary;  // the contact element's kernel (Ericson 5.1.5)
+  return closestTrianglePoint(p, a, b, c, bary);
 }
 
 double segmentTriangleDistance(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b,
                                const Vector3d& c) {
-  // Crossing: the segment's ends on opposite sides of the plane and the
-  // crossing point inside the triangle (barycentric signs).
-  const Vector3d n = (b - a).cross(c - a);
-  const double sp = n.dot(p - a), sq = n.dot(q - a);
-  if ((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) {
-    if (sp != sq) {
-      const Vector3d x = p + (sp / (sp - sq)) * (q - p);
-      const double u = n.dot((b - a).cross(x - a)), v = n.dot((c - b).cross(x - b)), w = n.dot((a - c).cross(x - c));
-      if ((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0)) return 0.0;
-    }
-  }
-  // Otherwise the closest points lie on the segment's ends or on an edge.
-  double d = std::min((p - closestPointOnTriangle(p, a, b, c)).norm(), (q - closestPointOnTriangle(q, a, b, c)).norm());
-  d = std::min(d, segmentSegmentDistance(p, q, a, b));
-  d = std::min(d, segmentSegmentDistance(p, q, b, c));
-  d = std::min(d, segmentSegmentDistance(p, q, c, a));
-  return d;
+  // The segment-against-surface contact's closest points (0 through the triangle).
+  double s = 0.0;
+  Vector3d bary;
+  return closestSegmentTrianglePoints(p, q, a, b, c, s, bary);
 }
 
 Vector3d deformedVertex(const BodyGeometry& g, Eigen::Index k, const Eigen::VectorXd& w) {

@@ -9,6 +9,7 @@
 #include "mbs-run/monitors/bounding_volume_tree.h"
 #include "mbs-run/run/margins.h"
 #include "mbs-run/mechanics/flexible/flexible_body.h"
+#include "mbs-run/mechanics/force_elements.h"
 #include "mbs-run/mechanics/rigid_body.h"
 #include "mbs-run/monitors/stress_recovery.h"
 #include "mbs-run/run/run_policy.h"
@@ -411,6 +412,56 @@ void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
   }
 }
 
+// A contact's surface on a flexible `body`: its mesh's shell triangles (those
+// with a node within `near: {from, to, distance}` of that line, body
+// coordinates, when given: a fine mesh's triangles far from where the contact
+// can act cost time at every evaluation), each node moving with its mode
+// shapes; `half_thickness` the shell's half thickness about the mid-surface.
+void parseSurface(const Model& m, int body, const InputNode& sf, ForceElement& fe) {
+  sf.allowKeys({"half_thickness", "near"});
+  const Body& b = m.bodies[body];
+  if (!b.flex) sf.fail("a surface is a flexible body's shell mesh, but body '" + b.name + "' is rigid");
+  fe.edge_half_thickness = sf.has("half_thickness") ? sf["half_thickness"].asNonNegative() : 0.0;
+  const fc::FlexBodyFile f = readBodyMesh(b, sf);
+  const Eigen::Index n = f.body.nodes.rows();
+  std::vector<char> close(n, 1);
+  if (sf.has("near")) {
+    const InputNode nr = sf["near"];
+    nr.allowKeys({"from", "to", "distance"});
+    const Vector3d from = vec3(nr["from"], kMaxLength, "m"), to = vec3(nr["to"], kMaxLength, "m");
+    const double dist = nr["distance"].asNonNegative();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      double s = 0.0, t = 0.0;
+      const Vector3d x = f.body.nodes.row(k).transpose();
+      closestSegmentPoints(x, x, from, to, s, t);
+      close[k] = (x - (from + t * (to - from))).norm() <= dist;
+    }
+  }
+  std::vector<int> index(n, -1);  // mesh node -> the contact's node
+  for (const auto& [kind, el] : f.body.elements) {
+    if (el.cols() != 3) continue;
+    for (Eigen::Index e = 0; e < el.rows(); ++e) {
+      if (!close[el(e, 0)] && !close[el(e, 1)] && !close[el(e, 2)]) continue;
+      std::array<int, 3> t{};
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Index k = el(e, c);
+        if (index[k] < 0) {
+          index[k] = int(fe.edge_points.size());
+          fe.edge_points.push_back(f.body.nodes.row(k).transpose());
+          PointShapes sh;
+          sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
+          sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
+          fe.edge_shapes.push_back(sh);
+        }
+        t[c] = index[k];
+      }
+      fe.surface_triangles.push_back(t);
+    }
+  }
+  if (fe.surface_triangles.empty())
+    sf.fail("body '" + b.name + "' has no shell triangles" + (sf.has("near") ? " near that line" : " in its file"));
+}
+
 // The plane of a contact on body j: {point, normal} with an optional
 // rectangle patch {axis, half_sizes}.
 void parsePlane(const Model& m, const InputNode& pl, ForceElement& fe) {
@@ -436,8 +487,8 @@ void parsePlane(const Model& m, const InputNode& pl, ForceElement& fe) {
 // a segment of the first against an edge of the second, or an edge of the
 // first against a plane of the second (force_elements.h, contactState).
 void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
-  f.allowKeys({"name", "type", "bodies", "point", "plane", "segment", "edge", "stiffness", "exponent", "restitution",
-               "impact_speed", "radius", "enabled"});
+  f.allowKeys({"name", "type", "bodies", "point", "plane", "segment", "edge", "surface", "stiffness", "exponent",
+               "restitution", "impact_speed", "radius", "enabled"});
   fe.type = ForceType::Contact;
   const InputNode b = f["bodies"];
   if (!b.isSequence() || b.size() != 2)
@@ -448,10 +499,13 @@ void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
   const int firsts = int(f.has("point")) + int(f.has("segment")) + int(f.has("edge") && !f.has("segment"));
   if (firsts != 1)
     f.fail("expected one of: 'point' and 'plane' (point against plane), 'segment' and 'edge' (segment against "
-           "edge), 'edge' and 'plane' (edge against plane)");
+           "edge), 'segment' and 'surface' (segment against a flexible body's shell triangles), 'edge' and 'plane' "
+           "(edge against plane)");
+  if (f.has("surface") && !f.has("segment")) f["surface"].fail("a 'surface' is met by a 'segment' of the first body");
   if (f.has("segment")) {
     fe.contact_kind = ForceElement::ContactKind::SegmentEdge;
-    if (f.has("plane")) f["plane"].fail("a segment acts against an 'edge', not a plane");
+    if (f.has("plane")) f["plane"].fail("a segment acts against an 'edge' or a 'surface', not a plane");
+    if (f.has("surface") && f.has("edge")) f["surface"].fail("expected either 'edge' or 'surface', not both");
     if (f.has("radius")) f["radius"].fail("a segment's radius is segment: {radius}");
     const InputNode sg = f["segment"];
     sg.allowKeys({"points", "radius"});
@@ -461,7 +515,12 @@ void parseContact(const Model& m, const InputNode& f, ForceElement& fe) {
     fe.point_i2 = pointRef(m, fe.body_i, pts.at(1), fe.shapes_i2);
     if ((fe.point_i2 - fe.point_i).norm() == 0.0) pts.fail("expected two distinct end points");
     fe.segment_radius = sg.has("radius") ? sg["radius"].asNonNegative() : 0.0;
-    parseEdge(m, fe.body_j, f["edge"], fe);
+    if (f.has("surface")) {
+      fe.contact_kind = ForceElement::ContactKind::SegmentSurface;
+      parseSurface(m, fe.body_j, f["surface"], fe);
+    } else {
+      parseEdge(m, fe.body_j, f["edge"], fe);
+    }
   } else if (f.has("edge")) {
     fe.contact_kind = ForceElement::ContactKind::EdgePlane;
     parseEdge(m, fe.body_i, f["edge"], fe);

@@ -11,6 +11,11 @@
 //   m_eff = 1 / (1/m + a^2 / I) of a point a off the centre (Goldsmith,
 //   Impact, 1960, ch. 2): v' = v0 (2 m_eff / m - 1), omega' = 2 m_eff v0 a / I;
 //   with damping, the Lankarani-Nikravesh restitution as the point contact's;
+// - a panel's face sloping across another panel's rim between its nodes (the
+//   monitor's 0, the rim's distance to the face by hand);
+// - the closest points of a segment and a triangle by hand (through the face,
+//   an end over the face, beside an edge, past a vertex), with the
+//   barycentric weights that share the force among the triangle's nodes;
 // - a rod pressed by a constant force onto a clamped beam's edge (its mesh
 //   nodes): static deflection F x^3 / (3 EI) (Euler-Bernoulli) plus F / k;
 // - a flexible beam's edge (its mesh nodes) against a fixed plane patch: the
@@ -23,6 +28,7 @@
 #include "beam_body.h"
 #include "helpers.h"
 #include "mbs-run/mechanics/force_elements.h"
+#include "mbs-run/monitors/distance.h"
 #include "mbs-run/run/simulation.h"
 
 namespace fc::mbs::test {
@@ -49,6 +55,71 @@ TEST(EdgeContact, ClosestPointsOfTwoSegmentsByHand) {
   closestSegmentPoints({0, 0, 0}, {2, 0, 0}, {1, 0, 0.5}, {3, 0, 0.5}, s, t);
   const Vector3d c1 = Vector3d(0, 0, 0) + s * Vector3d(2, 0, 0), c2 = Vector3d(1, 0, 0.5) + t * Vector3d(2, 0, 0);
   EXPECT_NEAR((c1 - c2).norm(), 0.5, 1e-15);
+}
+
+TEST(SurfaceContact, ClosestPointsOfASegmentAndATriangleByHand) {
+  // The triangle a = (0,0,0), b = (1,0,0), c = (0,1,0) in z = 0.
+  const Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  double s = -1;
+  Vector3d l;
+  // Through the face at (0.2, 0.3, 0), a quarter along the segment: distance 0,
+  // s = 0.25, weights (0.5, 0.2, 0.3).
+  EXPECT_EQ(closestSegmentTrianglePoints({0.2, 0.3, -0.5}, {0.2, 0.3, 1.5}, a, b, c, s, l), 0.0);
+  EXPECT_NEAR(s, 0.25, 1e-15);
+  EXPECT_NEAR((l - Vector3d(0.5, 0.2, 0.3)).norm(), 0.0, 1e-15);
+  // A vertical segment from (0.1, 0.2, 0.3) up: its lower end over the face,
+  // distance 0.3, s = 0, weights (0.7, 0.1, 0.2).
+  EXPECT_NEAR(closestSegmentTrianglePoints({0.1, 0.2, 0.3}, {0.1, 0.2, 2.0}, a, b, c, s, l), 0.3, 1e-15);
+  EXPECT_EQ(s, 0.0);
+  EXPECT_NEAR((l - Vector3d(0.7, 0.1, 0.2)).norm(), 0.0, 1e-15);
+  // A horizontal segment along x at y = -0.4, z = 0.3, from x = 0.5 to 1.5:
+  // closest to the edge ab, the whole overlap x in [0.5, 1] at distance 0.5
+  // (any pair there; the one returned must be at that distance, on ab).
+  const double d = closestSegmentTrianglePoints({0.5, -0.4, 0.3}, {1.5, -0.4, 0.3}, a, b, c, s, l);
+  EXPECT_NEAR(d, 0.5, 1e-15);
+  EXPECT_NEAR(l[2], 0.0, 1e-15);
+  EXPECT_NEAR(l.sum(), 1.0, 1e-15);
+  const Vector3d ci = Vector3d(0.5, -0.4, 0.3) + s * Vector3d(1, 0, 0), cj = l[0] * a + l[1] * b + l[2] * c;
+  EXPECT_NEAR((ci - cj).norm(), 0.5, 1e-15);
+  // A segment from (-1, 2, 0) to (-1, 2, 1), beyond vertex c: the vertex, at
+  // distance sqrt(1 + 1) from the segment's lower end.
+  EXPECT_NEAR(closestSegmentTrianglePoints({-1, 2, 0}, {-1, 2, 1}, a, b, c, s, l), std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(s, 0.0);
+  EXPECT_NEAR((l - Vector3d(0, 0, 1)).norm(), 0.0, 1e-15);
+  // A vertical segment through z = 0 at (0.75, 0.75), outside the triangle
+  // beyond edge bc: closest to that edge's middle (0.5, 0.5, 0), distance
+  // sqrt(0.125), s = 0.5, weights (0, 0.5, 0.5).
+  EXPECT_NEAR(closestSegmentTrianglePoints({0.75, 0.75, -1.0}, {0.75, 0.75, 1.0}, a, b, c, s, l), std::sqrt(0.125),
+              1e-15);
+  EXPECT_NEAR(s, 0.5, 1e-15);
+  EXPECT_NEAR((l - Vector3d(0, 0.5, 0.5)).norm(), 0.0, 1e-15);
+}
+
+TEST(SurfaceContact, FaceAcrossAPanelRimByHand) {
+  // The SAR lay-up 1 case in miniature: a triangle of a bent panel whose two
+  // nodes A, B lie 2 mm above a 2.0 x 1.3 m mid-plane rectangle (z = 0), 20 mm
+  // inside its rim x = -1, and whose third node C hangs below it outside the
+  // rim: z = 0.002 - (0.04 / 0.3)(-0.98 - x), so at the rim the face is
+  // 0.002 - 0.02 (0.04 / 0.3) = -2/3 mm, below the mid-plane. The monitor's
+  // distance is 0 (the face crosses the rectangle at x = -0.985), although
+  // every node is 2 mm off it; the rim as a segment against the face is the
+  // line's distance to the plane, (2/3 mm) cos(atan(0.04 / 0.3)).
+  BodyGeometry tri;
+  tri.vertices.resize(3, 3);
+  tri.vertices << -0.98, -0.98, -1.28, 0.1, -0.1, 0.0, 0.002, 0.002, -0.038;
+  tri.triangles.push_back({0, 1, 2});
+  const BodyGeometry rect = rectangleGeometry(2.0, 1.3);
+  EXPECT_EQ(geometryDistance(tri, tri.vertices, rect, rect.vertices), 0.0);
+  double s = -1;
+  Vector3d l;
+  const Vector3d a = tri.vertices.col(0), b = tri.vertices.col(1), c = tri.vertices.col(2);
+  const Vector3d p(-1.0, -0.65, 0.0), q(-1.0, 0.65, 0.0);
+  const double d = closestSegmentTrianglePoints(p, q, a, b, c, s, l);
+  const double ref = (2.0e-3 / 3.0) * std::cos(std::atan(0.04 / 0.3));
+  EXPECT_NEAR(d, ref, 1e-15);
+  EXPECT_NEAR(((p + s * (q - p)) - (l[0] * a + l[1] * b + l[2] * c)).norm(), d, 1e-15);
+  EXPECT_NEAR(l.sum(), 1.0, 1e-15);
+  EXPECT_GE(l.minCoeff(), 0.0);
 }
 
 // A fixed ground with an edge along x (points [-1, 0, 0] and [1, 0, 0]).
@@ -302,6 +373,12 @@ forces:
   fails("  - {type: contact, bodies: [rod, ground], edge: {points: [[0,0,0],[1,0,0]]}, plane: {point: [0,0,0], "
         "normal: [0,0,1], rectangle: {axis: [0,0,1], half_sizes: [1,1]}}, stiffness: 1.0}\n",
         "in the plane");
+  fails("  - {type: contact, bodies: [rod, ground], segment: {points: [[0,0,0],[0,1,0]]}, surface: {half_thickness: "
+        "0.001}, stiffness: 1.0}\n",
+        "is rigid");
+  fails("  - {type: contact, bodies: [rod, ground], point: [0,0,0], plane: {point: [0,0,0], normal: [0,0,1]}, "
+        "surface: {}, stiffness: 1.0}\n",
+        "met by a 'segment'");
 }
 
 }  // namespace
