@@ -33,6 +33,10 @@ struct BuildResult {
   long attachment_modes = 0;  // modes: {static_correction}: residual vectors kept (residual_flexibility.h)
   Eigen::VectorXd rigid_eigenvalues;
   double rigid_share_removed_min = 1.0, rigid_share_kept_max = 0.0;
+  // The rigid motions were deflated from the eigen-solve (modal_solver.h), and
+  // how near to null vectors of K they are (rigidNullResidual).
+  bool rigid_deflated = false;
+  double rigid_null_residual = 0.0;
   // Moment-consistent lumping (fe-prep/mass_lumping.h): applied, and the smallest
   // ratio of a corrected nodal mass to its row-sum value.
   bool moment_lumping = false;
@@ -50,6 +54,10 @@ struct BuildOptions {
   // (reference_conditions.h); the same body to rounding, the elimination's K
   // carries a dense block per patch. Kept for the comparison test.
   PatchHold patch_hold = PatchHold::Multipliers;
+  // Deflate the rigid motions from the eigen-solve where they are null
+  // vectors of K (modal_solver.h); off solves for them as before. The same
+  // body to the solver's tolerance; kept for the comparison test.
+  bool deflate_rigid = true;
 };
 
 // This process's peak resident memory so far, MiB (getrusage).

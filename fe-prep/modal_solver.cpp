@@ -17,6 +17,15 @@ namespace {
 
 using OwnedEps = Owned<EPS, EPSDestroy>;
 
+// The largest rigidNullResidual at which the rigid motions are deflated, a
+// guard rather than an accuracy bound: the DST panels and the beams measure
+// 4e-18..2e-16 (rounding of K r for an exact null vector), a K that is not
+// singular on the rigid motions (an imported one written to a few digits)
+// far more. Whether the deflated body equals the undeflated one is not told
+// by this residual (the beam that differs by 2e-9 measured 5e-17; the
+// caller restricts deflation to shell meshes, build_body.cpp).
+constexpr double kDeflationNullBound = 1e-12;
+
 struct MonitorContext {
   const std::function<void(long, long)>* progress;
   long wanted;
@@ -99,14 +108,33 @@ PC setUpEigenSolver(EPS eps, Mat K, Mat M, long nev, long massive, double tolera
   // K - sigma M is symmetric positive definite for sigma < 0 (or sigma = 0 and
   // a constrained K): Cholesky halves MUMPS's work and memory against LU.
   check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  // A nonzero shift forms K - sigma M in K's own storage (restored when the
+  // solve ends, STPostSolve) instead of a copy of K: one matrix of K's size
+  // less at the factorisation's peak. M's pattern is within K's (the same
+  // element pattern, or node-local blocks for a lumped mass), so the
+  // addition does not reallocate K.
+  if (shift != 0.0) {
+    check(STSetMatMode(st, ST_MATMODE_INPLACE), "STSetMatMode");
+    check(STSetMatStructure(st, SUBSET_NONZERO_PATTERN), "STSetMatStructure");
+  }
   check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   return pc;
 }
 
 // EPSSolve; a failure is reported once, as a sentence, not as PETSc's trace.
-void solveOrExplain(OwnedEps& eps, PC pc, long nev, long r, long elastic_available) {
+// With a deflation space: EPSSetUp copies it into the solver's basis, so these
+// vectors are released before the iteration (they are not alive at its peak).
+void solveOrExplain(OwnedEps& eps, PC pc, long nev, long r, long elastic_available, std::vector<OwnedVec>& deflation) {
   check(PetscPushErrorHandler(recordingErrorHandler, nullptr), "PetscPushErrorHandler");
-  const PetscErrorCode ierr = EPSSolve(eps);
+  PetscErrorCode ierr = 0;
+  if (!deflation.empty()) {
+    std::vector<Vec> v;
+    for (auto& d : deflation) v.push_back(d.h);
+    ierr = EPSSetDeflationSpace(eps, static_cast<PetscInt>(v.size()), v.data());
+    if (!ierr) ierr = EPSSetUp(eps);
+    deflation.clear();
+  }
+  if (!ierr) ierr = EPSSolve(eps);
   PetscPopErrorHandler();
   if (ierr) {
     // Out of memory in MUMPS or PETSc is said as such, not as a mode count.
@@ -129,17 +157,38 @@ void solveOrExplain(OwnedEps& eps, PC pc, long nev, long r, long elastic_availab
 
 // The converged pairs, M-normalised, whole on every rank, each with its rigid share.
 std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, PetscInt nconv, long nev, PetscInt N, long r,
-                                 long multipliers) {
+                                 long multipliers, const Eigen::MatrixXd* deflated) {
   const std::vector<OwnedVec>& MR = rs.MR;
   const Eigen::MatrixXd& Ginv = rs.Ginv;
   std::vector<Pair> pairs;
   OwnedVec xr, Mx, xall;
   OwnedScatter scatter;
   check(MatCreateVecs(K, &xr, &Mx), "MatCreateVecs");
+  OwnedVec rj;
+  if (deflated) check(MatCreateVecs(K, &rj, nullptr), "MatCreateVecs");
   check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
   for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
     PetscScalar kr;
     check(EPSGetEigenpair(eps, i, &kr, nullptr, xr, nullptr), "EPSGetEigenpair");
+    if (deflated) {
+      // Deflated: the vector is M-orthogonal to the rigid space up to the
+      // rounding of the last shift-invert solve (SLEPc's purification),
+      // which magnifies rigid components by lambda / |sigma| (~1e3 for the
+      // panels) against the elastic ones. Remove them: x -= R G^-1 R^T M x,
+      // so that the shape is as free of rigid motion as the undeflated
+      // solve's, whose modes are orthogonalised against the rigid pairs.
+      Eigen::VectorXd b(r);
+      for (long j = 0; j < r; ++j) {
+        PetscScalar d;
+        check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
+        b(j) = d;
+      }
+      const Eigen::VectorXd c = Ginv * b;
+      for (long j = 0; j < r; ++j) {
+        setLocal(rj, deflated->col(j));
+        check(VecAXPY(xr, -c(j), rj), "VecAXPY");
+      }
+    }
     check(MatMult(M, xr, Mx), "MatMult");
     PetscScalar xmx;
     check(VecDot(xr, Mx, &xmx), "VecDot");
@@ -168,7 +217,51 @@ std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, Pe
   return pairs;
 }
 
+// The generalised eigenvalues of the rigid basis's projection (R^T K R, R^T M R):
+// what a deflated solve reports as the removed rigid eigenvalues (~0).
+Eigen::VectorXd rigidRayleigh(Mat K, Mat M, const Eigen::MatrixXd& rigid) {
+  const long r = rigid.cols();
+  std::vector<OwnedVec> R(static_cast<std::size_t>(r)), KR(static_cast<std::size_t>(r)), MR(static_cast<std::size_t>(r));
+  for (long j = 0; j < r; ++j) {
+    const auto u = static_cast<std::size_t>(j);
+    R[u] = toPetsc(M, rigid.col(j));
+    check(MatCreateVecs(M, nullptr, &KR[u]), "MatCreateVecs");
+    check(MatCreateVecs(M, nullptr, &MR[u]), "MatCreateVecs");
+    check(MatMult(K, R[u], KR[u]), "MatMult");
+    check(MatMult(M, R[u], MR[u]), "MatMult");
+  }
+  Eigen::MatrixXd A(r, r), B(r, r);
+  for (long i = 0; i < r; ++i)
+    for (long j = 0; j < r; ++j) {
+      PetscScalar a, b;
+      check(VecDot(R[static_cast<std::size_t>(i)], KR[static_cast<std::size_t>(j)], &a), "VecDot");
+      check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &b), "VecDot");
+      A(i, j) = a;
+      B(i, j) = b;
+    }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), 0.5 * (B + B.transpose()),
+                                                               Eigen::EigenvaluesOnly);
+  return es.eigenvalues();
+}
+
 }  // namespace
+
+double rigidNullResidual(Mat K, const Eigen::MatrixXd& rigid) {
+  if (rigid.cols() == 0) return 0.0;
+  PetscReal knorm;
+  check(MatNorm(K, NORM_INFINITY, &knorm), "MatNorm");
+  OwnedVec x, y;
+  check(MatCreateVecs(K, &x, &y), "MatCreateVecs");
+  double worst = 0.0;
+  for (long j = 0; j < rigid.cols(); ++j) {
+    setLocal(x, rigid.col(j));
+    check(MatMult(K, x, y), "MatMult");
+    PetscReal ky;
+    check(VecNorm(y, NORM_INFINITY, &ky), "VecNorm");
+    worst = std::max(worst, ky / (knorm * rigid.col(j).cwiseAbs().maxCoeff()));
+  }
+  return worst;
+}
 
 long masslessDofs(Mat M) {
   OwnedVec d;
@@ -193,41 +286,63 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
 
   const RigidSpace rs = rigidSpace(M, rigid);
 
+  // The rigid motions as a deflation space: when they are null vectors of K
+  // (to rounding, against a bound far below the solver's 1e-10), the r rigid
+  // eigenpairs are known exactly and Krylov-Schur need not find them; it
+  // works in the M-orthogonal complement of the rigid space (SLEPc
+  // M-orthonormalises the space, the GHEP's inner product), where the
+  // elastic modes are.
+  ModalResult result;
+  if (request.deflate_rigid) result.rigid_null_residual = rigidNullResidual(K, rigid);
+  const bool deflatable = request.deflate_rigid && r > 0 && result.rigid_null_residual <= kDeflationNullBound;
+  // The deflated rigid pairs: the rigid space exactly, with its Rayleigh
+  // quotients (computed now, before the factorisation's peak).
+  if (deflatable) result.rigid_eigenvalues = rigidRayleigh(K, M, rigid);
+
   const double lambda_max =
       request.max_frequency_hz > 0 ? std::pow(2 * M_PI * request.max_frequency_hz, 2) : 0.0;
   long wanted = request.modes > 0 ? std::min(request.modes, elastic_available) : std::min<long>(12, elastic_available);
 
-  ModalResult result;
   for (;;) {
-    const long nev = std::min<long>(wanted + r, massive);
+    // Deflated only while the Krylov space leaves room beside the deflation
+    // space: SLEPc refused (error 95) a free beam's every mode (240 of 240
+    // with 6 deflated), which the undeflated solve delivers.
+    const bool deflate = deflatable && 2 * wanted <= elastic_available;
+    // Rigid pairs the solver still finds, and the Krylov space they take.
+    const long r_solved = deflate ? 0 : r;
+    const long nev = std::min<long>(wanted + r_solved, massive - (r - r_solved));
     OwnedEps eps;
     check(EPSCreate(comm, &eps), "EPSCreate");
     const double sigma = r > 0 ? request.shift : 0.0;
-    const PC pc = setUpEigenSolver(eps, K, M, nev, massive, request.tolerance, sigma);
+    const PC pc = setUpEigenSolver(eps, K, M, nev, massive - (r - r_solved), request.tolerance, sigma);
     MonitorContext mctx{&progress, nev};
     check(EPSMonitorSet(eps, monitor, &mctx, nullptr), "EPSMonitorSet");
     check(EPSSetFromOptions(eps), "EPSSetFromOptions");
-    solveOrExplain(eps, pc, nev, r, elastic_available);
+    std::vector<OwnedVec> deflation;
+    if (deflate)
+      for (long j = 0; j < r; ++j) deflation.push_back(toPetsc(M, rigid.col(j)));
+    solveOrExplain(eps, pc, nev, r_solved, elastic_available, deflation);
     PetscInt nconv, its;
     check(EPSGetConverged(eps, &nconv), "EPSGetConverged");
     check(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
     result.iterations += its;
     result.factorisation = largerMumpsMemory(result.factorisation, mumpsMemory(pc));
 
-    std::vector<Pair> pairs = convergedPairs(eps, K, M, rs, nconv, nev, N, r, request.multipliers);
+    std::vector<Pair> pairs = convergedPairs(eps, K, M, rs, nconv, nev, N, r, request.multipliers, deflate ? &rigid : nullptr);
 
     if (static_cast<long>(pairs.size()) < nev)
       throw ModeCountError("the eigen-solver converged " + std::to_string(pairs.size()) + " of " +
                            std::to_string(nev) + " modes (rigid ones included); ask for fewer modes");
 
-    // The r modes with the largest rigid share are the rigid ones.
+    // The r modes with the largest rigid share are the rigid ones (deflated:
+    // none of the solved ones, whose shares stay at rounding).
     std::vector<std::size_t> order(pairs.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return pairs[a].rigid_share > pairs[b].rigid_share; });
     std::vector<Pair> kept, removed;
     for (std::size_t k = 0; k < order.size(); ++k)
-      (static_cast<long>(k) < r ? removed : kept).push_back(std::move(pairs[order[k]]));
+      (static_cast<long>(k) < r_solved ? removed : kept).push_back(std::move(pairs[order[k]]));
     auto by_lambda = [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; };
     std::sort(kept.begin(), kept.end(), by_lambda);
     std::sort(removed.begin(), removed.end(), by_lambda);
@@ -251,8 +366,10 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
       result.vectors.col(k) = kept[static_cast<std::size_t>(k)].x;
       result.rigid_projection_max = std::max(result.rigid_projection_max, kept[static_cast<std::size_t>(k)].rigid_share);
     }
-    result.rigid_eigenvalues.resize(r);
-    for (long k = 0; k < r; ++k) {
+    result.deflated = deflate;
+    if (deflate) result.rigid_projection_min = 1.0;  // the rigid space itself
+    else result.rigid_eigenvalues.resize(r);
+    for (long k = 0; k < r_solved; ++k) {
       result.rigid_eigenvalues(k) = removed[static_cast<std::size_t>(k)].lambda;
       result.rigid_projection_min = std::min(result.rigid_projection_min, removed[static_cast<std::size_t>(k)].rigid_share);
     }

@@ -31,6 +31,11 @@ struct ModalRequest {
   // Craig-Bampton constraint modes solve with that same K, so they need not
   // factorise it again.
   bool keep_factor = false;
+  // Deflate the rigid motions (EPSSetDeflationSpace) when they are null
+  // vectors of K to rounding (rigidNullResidual): Krylov-Schur then seeks only
+  // the elastic pairs, in the M-orthogonal complement of the rigid space.
+  // Off gives the undeflated solve, kept for the comparison test.
+  bool deflate_rigid = true;
 };
 
 struct ModalResult {
@@ -40,6 +45,8 @@ struct ModalResult {
   double rigid_projection_min = 1.0;  // smallest rigid-space share among the removed modes
   double rigid_projection_max = 0.0;  // largest rigid-space share among the kept modes
   long iterations = 0;
+  bool deflated = false;              // the rigid motions were a deflation space
+  double rigid_null_residual = 0.0;   // rigidNullResidual of the rigid basis (0 when not deflatable)
   MumpsMemory factorisation;          // the shift-invert factorisation's (the largest of the solves)
   // With keep_factor and shift 0: the eigen-solve's MUMPS factor of K, for
   // MatSolve (its memory stays held until this is released).
@@ -58,6 +65,12 @@ class ModeCountError : public std::runtime_error {
 // has stiffness (the drilling penalty) but no inertia. Each is an infinite
 // eigenvalue: at most N - masslessDofs(M) - r elastic modes exist.
 long masslessDofs(Mat M);
+
+// The largest ||K r_j||_inf / (||K||_inf ||r_j||_inf) over the rigid basis's
+// columns: how far the geometric rigid motions are from null vectors of the
+// assembled K (rounding, ~1e-16, for the shell and beam elements; more for an
+// imported K written to a few digits).
+double rigidNullResidual(Mat K, const Eigen::MatrixXd& rigid);
 
 // rigid: reduced DOF x r basis of the admissible rigid motions (every rank).
 // progress(converged, wanted) is called on rank 0 during the iteration.
