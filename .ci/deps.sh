@@ -8,9 +8,10 @@ PKGS=(cmake g++ make pkg-config
       libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml
-      python3-scipy python3-mpi4py    # flexcomp-study: Sobol' designs (scipy.stats.qmc), --executor mpi (docs/studies.md)
-      libopenblas0-serial)            # fe-prep links it (CMake FLEXCOMP_OPENBLAS, on by default): MUMPS's dense kernels
-# libopenblas0-serial: serial OpenBLAS for MUMPS's dense kernels inside fe-prep
+      python3-scipy python3-mpi4py)   # flexcomp-study: Sobol' designs (scipy.stats.qmc), --executor mpi (docs/studies.md)
+# --with-openblas: libopenblas0-serial, serial OpenBLAS for MUMPS's dense kernels
+# inside fe-prep built with -DFLEXCOMP_OPENBLAS=ON (opt-in: OpenBLAS hangs instead
+# of failing when its work buffer cannot be allocated; fe-prep/CMakeLists.txt)
 # (half of a fe-prep run was Debian's reference BLAS; docs/benchmarks.md, fe-prep
 # against CalculiX). fe-prep links the library itself. Installing it in apt's
 # auto mode also makes it the system's libblas.so.3 for every program; to keep
@@ -19,7 +20,6 @@ PKGS=(cmake g++ make pkg-config
 # --with-paraview (what CI uses, .ci/test.sh): pvpython, so that the test loading
 # BODY.xdmf and the animation in ParaView runs instead of being skipped
 # (python3-paraview pulls in paraview, about 0.5 GB).
-# --with-openblas: accepted for older scripts (OpenBLAS is now in the default list).
 # --with-slurm: a Slurm controller, node daemon and munge, so that the sampling study's
 # Slurm route runs end to end in tests/examples/check_study_executors.py (it starts a
 # private controller on localhost; without these packages the test runs the array's

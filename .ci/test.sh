@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 BUILD=${BUILD_DIR:-build}
 if [ -z "${FLEXCOMP_CONFIGURE_ONLY:-}" ]; then bash .ci/deps.sh --with-paraview --with-slurm; fi
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFLEXCOMP_BUILD_TESTS=ON -DFLEXCOMP_BUILD_BENCH=ON \
-  -DFLEXCOMP_WERROR=ON -DFLEXCOMP_OPENBLAS=ON
+  -DFLEXCOMP_WERROR=ON -DFLEXCOMP_OPENBLAS=OFF
 if [ -n "${FLEXCOMP_CONFIGURE_ONLY:-}" ]; then exit 0; fi
 cmake --build "$BUILD" -j"$(nproc)"
 # OpenMPI refuses to run as root without these; PETSc initialises MPI in-process.
