@@ -56,14 +56,14 @@ struct Pair {
 // G = R^T M R, x M-normalised.
 struct RigidSpace {
   std::vector<OwnedVec> MR;
-  Eigen::MatrixXd Ginv;
+  Eigen::MatrixXd G, Ginv;  // G = R^T M R
 };
 
 RigidSpace rigidSpace(Mat M, const Eigen::MatrixXd& rigid) {
   const long r = rigid.cols();
-  RigidSpace rs{std::vector<OwnedVec>(static_cast<std::size_t>(r)), Eigen::MatrixXd()};
+  RigidSpace rs{std::vector<OwnedVec>(static_cast<std::size_t>(r)), Eigen::MatrixXd(r, r), Eigen::MatrixXd()};
   std::vector<OwnedVec>& MR = rs.MR;
-  Eigen::MatrixXd G(r, r);
+  Eigen::MatrixXd& G = rs.G;
   {
     std::vector<OwnedVec> R(static_cast<std::size_t>(r));
     for (long j = 0; j < r; ++j) {
@@ -167,6 +167,16 @@ std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, Pe
   OwnedVec rj;
   if (deflated) check(MatCreateVecs(K, &rj, nullptr), "MatCreateVecs");
   check(VecScatterCreateToAll(xr, &scatter, &xall), "VecScatterCreateToAll");
+  // R^T M x: the rigid coordinates' right-hand side, for the purification and the share.
+  auto rigidDots = [&](Vec x) {
+    Eigen::VectorXd b(r);
+    for (long j = 0; j < r; ++j) {
+      PetscScalar d;
+      check(VecDot(x, MR[static_cast<std::size_t>(j)], &d), "VecDot");
+      b(j) = d;
+    }
+    return b;
+  };
   for (PetscInt i = 0; i < std::min<PetscInt>(nconv, nev); ++i) {
     PetscScalar kr;
     check(EPSGetEigenpair(eps, i, &kr, nullptr, xr, nullptr), "EPSGetEigenpair");
@@ -177,13 +187,7 @@ std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, Pe
       // panels) against the elastic ones. Remove them: x -= R G^-1 R^T M x,
       // so that the shape is as free of rigid motion as the undeflated
       // solve's, whose modes are orthogonalised against the rigid pairs.
-      Eigen::VectorXd b(r);
-      for (long j = 0; j < r; ++j) {
-        PetscScalar d;
-        check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
-        b(j) = d;
-      }
-      const Eigen::VectorXd c = Ginv * b;
+      const Eigen::VectorXd c = Ginv * rigidDots(xr);
       for (long j = 0; j < r; ++j) {
         setLocal(rj, deflated->col(j));
         check(VecAXPY(xr, -c(j), rj), "VecAXPY");
@@ -194,12 +198,7 @@ std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, Pe
     check(VecDot(xr, Mx, &xmx), "VecDot");
     check(VecScale(xr, 1.0 / std::sqrt(xmx)), "VecScale");
     check(VecScale(Mx, 1.0 / std::sqrt(xmx)), "VecScale");
-    Eigen::VectorXd b(r);
-    for (long j = 0; j < r; ++j) {
-      PetscScalar d;
-      check(VecDot(xr, MR[static_cast<std::size_t>(j)], &d), "VecDot");
-      b(j) = d;
-    }
+    const Eigen::VectorXd b = rigidDots(xr);
     const double share = r ? b.dot(Ginv * b) : 0.0;
     check(VecScatterBegin(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
     check(VecScatterEnd(scatter, xr, xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
@@ -217,29 +216,26 @@ std::vector<Pair> convergedPairs(EPS eps, Mat K, Mat M, const RigidSpace& rs, Pe
   return pairs;
 }
 
-// The generalised eigenvalues of the rigid basis's projection (R^T K R, R^T M R):
-// what a deflated solve reports as the removed rigid eigenvalues (~0).
-Eigen::VectorXd rigidRayleigh(Mat K, Mat M, const Eigen::MatrixXd& rigid) {
+// The generalised eigenvalues of the rigid basis's projection (R^T K R, R^T M R,
+// the latter rigidSpace's G): what a deflated solve reports as the removed
+// rigid eigenvalues (~0).
+Eigen::VectorXd rigidRayleigh(Mat K, Mat M, const Eigen::MatrixXd& rigid, const RigidSpace& rs) {
   const long r = rigid.cols();
-  std::vector<OwnedVec> R(static_cast<std::size_t>(r)), KR(static_cast<std::size_t>(r)), MR(static_cast<std::size_t>(r));
+  std::vector<OwnedVec> R(static_cast<std::size_t>(r)), KR(static_cast<std::size_t>(r));
   for (long j = 0; j < r; ++j) {
     const auto u = static_cast<std::size_t>(j);
     R[u] = toPetsc(M, rigid.col(j));
     check(MatCreateVecs(M, nullptr, &KR[u]), "MatCreateVecs");
-    check(MatCreateVecs(M, nullptr, &MR[u]), "MatCreateVecs");
     check(MatMult(K, R[u], KR[u]), "MatMult");
-    check(MatMult(M, R[u], MR[u]), "MatMult");
   }
-  Eigen::MatrixXd A(r, r), B(r, r);
+  Eigen::MatrixXd A(r, r);
   for (long i = 0; i < r; ++i)
     for (long j = 0; j < r; ++j) {
-      PetscScalar a, b;
+      PetscScalar a;
       check(VecDot(R[static_cast<std::size_t>(i)], KR[static_cast<std::size_t>(j)], &a), "VecDot");
-      check(VecDot(R[static_cast<std::size_t>(i)], MR[static_cast<std::size_t>(j)], &b), "VecDot");
       A(i, j) = a;
-      B(i, j) = b;
     }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), 0.5 * (B + B.transpose()),
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), 0.5 * (rs.G + rs.G.transpose()),
                                                                Eigen::EigenvaluesOnly);
   return es.eigenvalues();
 }
@@ -297,7 +293,7 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
   const bool deflatable = request.deflate_rigid && r > 0 && result.rigid_null_residual <= kDeflationNullBound;
   // The deflated rigid pairs: the rigid space exactly, with its Rayleigh
   // quotients (computed now, before the factorisation's peak).
-  if (deflatable) result.rigid_eigenvalues = rigidRayleigh(K, M, rigid);
+  if (deflatable) result.rigid_eigenvalues = rigidRayleigh(K, M, rigid, rs);
 
   const double lambda_max =
       request.max_frequency_hz > 0 ? std::pow(2 * M_PI * request.max_frequency_hz, 2) : 0.0;
