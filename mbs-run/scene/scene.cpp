@@ -365,6 +365,16 @@ fc::FlexBodyFile readBodyMesh(const Body& b, const InputNode& at) {
   }
 }
 
+// Mesh node k of a body file as one of a contact's points: its position and
+// its translation and rotation mode shapes (the first `modes` columns).
+void pushMeshNode(const fc::FlexBodyFile& f, Eigen::Index k, int modes, ForceElement& fe) {
+  fe.edge_points.push_back(f.body.nodes.row(k).transpose());
+  PointShapes sh;
+  sh.psi = f.body.shapes.block(6 * k, 0, 3, modes);
+  sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, modes);
+  fe.edge_shapes.push_back(sh);
+}
+
 // A contact's edge on `body`: `points:` (interface names or body
 // coordinates, in order along the edge), or `from:`/`to:` on a flexible
 // body: the mesh nodes within `tolerance` of that line (body coordinates),
@@ -403,13 +413,7 @@ void parseEdge(const Model& m, int body, const InputNode& e, ForceElement& fe) {
     e.fail("found " + std::to_string(on.size()) + " mesh node(s) of body '" + b.name + "' within " +
            std::to_string(tol) + " m of the line from 'from' to 'to': expected at least two (check the body "
            "coordinates, or widen 'tolerance')");
-  for (const auto& [t, k] : on) {
-    fe.edge_points.push_back(f.body.nodes.row(k).transpose());
-    PointShapes sh;
-    sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
-    sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
-    fe.edge_shapes.push_back(sh);
-  }
+  for (const auto& [t, k] : on) pushMeshNode(f, k, b.modes, fe);
 }
 
 // A contact's surface on a flexible `body`: its mesh's shell triangles (those
@@ -447,11 +451,7 @@ void parseSurface(const Model& m, int body, const InputNode& sf, ForceElement& f
         const Eigen::Index k = el(e, c);
         if (index[k] < 0) {
           index[k] = int(fe.edge_points.size());
-          fe.edge_points.push_back(f.body.nodes.row(k).transpose());
-          PointShapes sh;
-          sh.psi = f.body.shapes.block(6 * k, 0, 3, b.modes);
-          sh.theta = f.body.shapes.block(6 * k + 3, 0, 3, b.modes);
-          fe.edge_shapes.push_back(sh);
+          pushMeshNode(f, k, b.modes, fe);
         }
         t[c] = index[k];
       }
