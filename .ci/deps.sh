@@ -8,6 +8,7 @@ PKGS=(cmake g++ make pkg-config
       libgmsh-dev libcli11-dev libyaml-cpp-dev libssl-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       hdf5-tools python3-matplotlib python3-h5py python3-numpy python3-yaml
+      libmumps-seq-dev libarpack2-dev   # fe-prep's serial program: sequential MUMPS and ARPACK (docs/architecture.md)
       python3-scipy python3-mpi4py)   # flexcomp-study: Sobol' designs (scipy.stats.qmc), --executor mpi (docs/studies.md)
 # --with-openblas: libopenblas0-serial, serial OpenBLAS for MUMPS's dense kernels
 # inside fe-prep built with -DFLEXCOMP_OPENBLAS=ON (opt-in: OpenBLAS hangs instead

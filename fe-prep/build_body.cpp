@@ -21,7 +21,7 @@
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/craig_bampton.h"
 #include "fe-prep/element_properties.h"
-#include "fe-prep/mesh_files/gmsh_regions.h"
+#include "fe-prep/gmsh_mesh.h"
 #include "fe-prep/geometric_stiffness.h"
 #include "fe-prep/import/import_stage.h"
 #include <optional>
@@ -33,40 +33,37 @@
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mass_lumping.h"
 #include "fe-prep/modal_solver.h"
-#include "fe-prep/panel_mesher.h"
-#include "fe-prep/petsc_handles.h"
 
 namespace fc::feprep {
 namespace {
 
-void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
+void broadcastMesh(Comm comm, Mesh& mesh) {
+  const int rank = commRank(comm);
   long sizes[3] = {mesh.nodeCount(), static_cast<long>(mesh.triangles.size()), static_cast<long>(mesh.beams.size())};
-  MPI_Bcast(sizes, 3, MPI_LONG, 0, comm);
+  broadcast(comm, sizes, 3);
   if (rank != 0) {
     mesh.nodes.resize(sizes[0], 3);
     mesh.triangles.resize(static_cast<std::size_t>(sizes[1]));
     mesh.beams.resize(static_cast<std::size_t>(sizes[2]));
   }
-  MPI_Bcast(mesh.nodes.data(), static_cast<int>(mesh.nodes.size()), MPI_DOUBLE, 0, comm);
-  MPI_Bcast(mesh.triangles.data(), static_cast<int>(3 * sizes[1]), MPI_LONG, 0, comm);
-  MPI_Bcast(mesh.beams.data(), static_cast<int>(2 * sizes[2]), MPI_LONG, 0, comm);
+  broadcast(comm, mesh.nodes.data(), static_cast<long>(mesh.nodes.size()));
+  broadcast(comm, mesh.triangles.data()->data(), static_cast<long>(3 * sizes[1]));
+  broadcast(comm, mesh.beams.data()->data(), static_cast<long>(2 * sizes[2]));
   // Each element's group (mesh files with regions): the properties follow on every rank.
   long has_groups = mesh.triangle_group.size() == mesh.triangles.size() && mesh.beam_group.size() == mesh.beams.size() &&
                     !mesh.groups.empty();
-  MPI_Bcast(&has_groups, 1, MPI_LONG, 0, comm);
+  broadcast(comm, &has_groups, 1);
   if (has_groups) {
     mesh.triangle_group.resize(static_cast<std::size_t>(sizes[1]));
     mesh.beam_group.resize(static_cast<std::size_t>(sizes[2]));
-    MPI_Bcast(mesh.triangle_group.data(), static_cast<int>(sizes[1]), MPI_INT, 0, comm);
-    MPI_Bcast(mesh.beam_group.data(), static_cast<int>(sizes[2]), MPI_INT, 0, comm);
+    broadcast(comm, mesh.triangle_group.data(), static_cast<long>(sizes[1]));
+    broadcast(comm, mesh.beam_group.data(), static_cast<long>(sizes[2]));
     std::string gnames;
     for (const auto& g : mesh.groups) gnames += g + "\n";
     long glen = static_cast<long>(gnames.size());
-    MPI_Bcast(&glen, 1, MPI_LONG, 0, comm);
+    broadcast(comm, &glen, 1);
     gnames.resize(static_cast<std::size_t>(glen));
-    MPI_Bcast(gnames.data(), static_cast<int>(glen), MPI_CHAR, 0, comm);
+    broadcast(comm, gnames.data(), static_cast<long>(glen));
     mesh.groups.clear();
     std::istringstream gin(gnames);
     for (std::string g; std::getline(gin, g);) mesh.groups.push_back(g);
@@ -80,13 +77,13 @@ void broadcastMesh(MPI_Comm comm, Mesh& mesh) {
     members.insert(members.end(), list.begin(), list.end());
   }
   long lens[3] = {static_cast<long>(names.size()), static_cast<long>(counts.size()), static_cast<long>(members.size())};
-  MPI_Bcast(lens, 3, MPI_LONG, 0, comm);
+  broadcast(comm, lens, 3);
   names.resize(static_cast<std::size_t>(lens[0]));
   counts.resize(static_cast<std::size_t>(lens[1]));
   members.resize(static_cast<std::size_t>(lens[2]));
-  MPI_Bcast(names.data(), static_cast<int>(lens[0]), MPI_CHAR, 0, comm);
-  MPI_Bcast(counts.data(), static_cast<int>(lens[1]), MPI_LONG, 0, comm);
-  MPI_Bcast(members.data(), static_cast<int>(lens[2]), MPI_LONG, 0, comm);
+  broadcast(comm, names.data(), static_cast<long>(lens[0]));
+  broadcast(comm, counts.data(), static_cast<long>(lens[1]));
+  broadcast(comm, members.data(), static_cast<long>(lens[2]));
   if (rank != 0) {
     mesh.sets.clear();
     std::istringstream in(names);
@@ -352,56 +349,23 @@ std::string keptText(const std::vector<long>& keep) {
 
 }  // namespace
 
-Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
+Mesh meshBody(Comm comm, const BodySpec& spec, bool quiet) {
   // A Nastran deck was read with the YAML, on every rank, properties and all.
   if (spec.general && spec.general->deck_mesh) return *spec.general->deck_mesh;
-  int rank;
-  MPI_Comm_rank(comm, &rank);
+  const int rank = commRank(comm);
   Mesh mesh;
   std::string error;
   int out_of_memory = 0;
   if (rank == 0) {
     try {
-      if (spec.general) {
-        RegionMeshRequest r;
-        r.path = spec.general->file;
-        r.size = spec.general->size;
-        r.length_scale = spec.general->length_scale;
-        r.max_triangles = spec.general->max_triangles;
-        for (const auto& reg : spec.general->regions) r.regions.push_back(reg.name);
-        r.ignore = spec.general->ignore;
-        // Interface and reference names that are no group are checked later, against the mesh's sets.
-        r.sets = namedSets(spec);
-        r.quiet = quiet;
-        mesh = readRegionMesh(r);
-      } else if (spec.beam) {
+      if (spec.beam) {
         std::vector<double> xs;
         for (const auto& i : spec.interfaces) xs.push_back(i.position.x());
         mesh = meshBeam(spec.beam->length, spec.beam->elements, xs);
-      } else if (spec.shell->rectangle) {
-        PanelMeshRequest r;
-        r.length = spec.shell->length;
-        r.width = spec.shell->width;
-        r.triangles = spec.shell->triangles;
-        r.size = spec.shell->size;
-        r.max_triangles = spec.shell->max_triangles;
-        r.box_graded_from = spec.shell->graded_from;
-        const double a = spec.shell->length / 2, b = spec.shell->width / 2;
-        for (const auto& i : spec.interfaces) {
-          // The node of a single-node interface (at its bracket's panel point, else at its projection); a
-          // patch's point needs a node only where it lies over the panel (off it, its bracket's pin).
-          if (i.bracket) r.forced_points.push_back(*i.bracket);
-          else if (i.coupling == Coupling::Node || (std::abs(i.position.x()) <= a && std::abs(i.position.y()) <= b))
-            r.forced_points.emplace_back(i.position.x(), i.position.y());
-          // Box patches on the mid-surface (z = 0) are meshed conforming: the same region at every size.
-          if (i.coupling != Coupling::Node && i.select == PatchSelect::Box && i.box_lo.z() <= 0.0 && i.box_hi.z() >= 0.0)
-            r.conforming_boxes.emplace_back(i.box_lo.x(), i.box_lo.y(), i.box_hi.x(), i.box_hi.y());
-        }
-        mesh = meshRectangle(r);
       } else {
-        std::vector<Eigen::Vector3d> pts;
-        for (const auto& i : spec.interfaces) pts.push_back(i.position);
-        mesh = meshGeoFile(spec.shell->geo_file, spec.shell->size, pts, true, spec.shell->max_triangles);
+        // A rectangle, a .geo or a .msh through gmsh (gmsh_mesh.h; the program
+        // fe-prep-mpi only, backend_choice.h).
+        mesh = meshWithGmsh(spec, namedSets(spec), quiet);
       }
     } catch (const std::bad_alloc& e) {
       // Said as what it is on every rank, not as a mesh error (common/memory.h).
@@ -414,11 +378,11 @@ Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet) {
       error = e.what();
     }
   }
-  MPI_Bcast(&out_of_memory, 1, MPI_INT, 0, comm);
+  broadcast(comm, &out_of_memory, 1);
   long len = static_cast<long>(error.size());
-  MPI_Bcast(&len, 1, MPI_LONG, 0, comm);
+  broadcast(comm, &len, 1);
   error.resize(static_cast<std::size_t>(len));
-  MPI_Bcast(error.data(), static_cast<int>(len), MPI_CHAR, 0, comm);
+  broadcast(comm, error.data(), static_cast<long>(len));
   if (!error.empty()) {
     if (out_of_memory) throw OutOfMemory(error);
     if (spec.general) spec.general->file_node.fail(error);
@@ -453,14 +417,14 @@ namespace {
 // Everything buildFlexBody's stages hand to one another, in the order the
 // stages fill it. One per build, never copied (the element kernel refers to it).
 struct BuildState {
-  BuildState(MPI_Comm c, const BodySpec& s, const BuildOptions& o) : comm(c), spec(s), options(o) {
-    MPI_Comm_rank(comm, &rank);
+  BuildState(Comm c, const BodySpec& s, const BuildOptions& o) : comm(c), spec(s), options(o) {
+    rank = commRank(comm);
     quiet = options.quiet || rank != 0;
   }
   BuildState(const BuildState&) = delete;
   BuildState& operator=(const BuildState&) = delete;
 
-  MPI_Comm comm;
+  Comm comm;
   const BodySpec& spec;
   const BuildOptions& options;
   int rank = 0;
@@ -941,10 +905,10 @@ void craigBamptonStage(BuildState& s) {
   swr.start();
   // The fixed-interface eigen-solve factorised this same K (shift 0): its
   // factor serves the constraint modes, and is released after them.
-  cb.factored = s.modal.factor_of_K.h;
+  cb.factored = s.modal.factor_of_K;
   CraigBamptonBasis basis = constraintModes(s.comm, cb);
   if (cb.factored) basis.factorisation = s.modal.factorisation;
-  s.modal.factor_of_K = OwnedMat();
+  s.modal.factor_of_K = FactorHandle();
   res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
   swr.start();
   res.constraint_modes = cb.n_boundary;
@@ -1143,7 +1107,7 @@ void finishStage(BuildState& s) {
 }  // namespace
 
 // The build as its stages over one BuildState; each stage's work is in its function above.
-BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options) {
+BuildResult buildFlexBody(Comm comm, const BodySpec& spec, const BuildOptions& options) {
   BuildState s(comm, spec, options);
   // 1. The mesh: generated from the spec, read from a mesh file or deck, or imported with its matrices.
   meshStage(s);

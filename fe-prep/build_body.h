@@ -2,7 +2,6 @@
 // The whole fe-prep pipeline on one body: mesh (gmsh, rank 0), reference
 // conditions, parallel assembly (PETSc), modes (SLEPc), interface shapes and
 // exact rigid properties. Every rank returns the same FlexBody; rank 0 writes.
-#include <mpi.h>
 
 #include <string>
 #include <vector>
@@ -11,6 +10,7 @@
 #include "fe-prep/body_spec.h"
 #include "fe-prep/mesh.h"
 #include "fe-prep/reference_conditions.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
@@ -63,10 +63,10 @@ struct BuildOptions {
 // This process's peak resident memory so far, MiB (getrusage).
 double peakRssMb();
 
-BuildResult buildFlexBody(MPI_Comm comm, const BodySpec& spec, const BuildOptions& options = {});
+BuildResult buildFlexBody(Comm comm, const BodySpec& spec, const BuildOptions& options = {});
 
 // The mesh of a body (rank 0 runs gmsh; the others receive it).
-Mesh meshBody(MPI_Comm comm, const BodySpec& spec, bool quiet);
+Mesh meshBody(Comm comm, const BodySpec& spec, bool quiet);
 
 // Shapes of a point P rigidly attached to a node X: u_P = u + theta x (P - X), theta_P = theta.
 // node_shapes (6 n_nodes, n_modes) node-major; returns (n_modes, 6).

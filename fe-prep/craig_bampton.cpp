@@ -2,7 +2,6 @@
 
 #include "fe-prep/static_response.h"
 
-#include "fe-prep/petsc_handles.h"
 #include "fe-prep/ritz_basis.h"
 
 #include <stdexcept>
@@ -48,51 +47,9 @@ bool isIdentity(const DofMap& map, long N) {
 
 }  // namespace
 
-CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in) {
-  const long nb = in.n_boundary, nk = in.normal ? in.normal->cols() : 0, N = 6 * in.n_nodes;
-  CraigBamptonBasis out;
-  out.n_boundary = nb;
-  out.B.resize(N, nb + nk);
-  // Constraint modes: one factorisation of the fixed-interface K (the
-  // eigen-solve's when given), nb solves;
-  // each right-hand side and solution is one vector at a time.
-  {
-    OwnedKsp ksp;
-    if (!in.factored) ksp = choleskySolver(comm, in.K_fixed);
-    OwnedVec b, x;
-    check(MatCreateVecs(in.K_fixed, &x, &b), "MatCreateVecs");
-    for (long j = 0; j < nb; ++j) {
-      Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
-      for (const auto& [node, rows] : in.K_lifts) f.segment<6>(6 * node) = rows.col(j);
-      setLocal(b, -reduceForce(*in.fixed, f));
-      if (in.factored) {
-        // A factor the eigen-solve completed: K_fixed is not singular.
-        check(MatSolve(in.factored, b, x), "MatSolve");
-      } else {
-        check(KSPSolve(ksp, b, x), "KSPSolve");
-        KSPConvergedReason why;
-        check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-        PC pc;
-        check(KSPGetPC(ksp, &pc), "KSPGetPC");
-        if (why < 0) {
-          // MUMPS out of memory fails the factorisation the same way: said as such.
-          throwIfOutOfMemory(pc, 0, "the fixed-interface stiffness");
-          throw std::runtime_error("craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
-                                   "rigid motions free: clamp the boundary interfaces, or pin at least three)");
-        }
-        if (j == 0) out.factorisation = mumpsMemory(pc);
-      }
-      out.B.col(j) = in.fixed->expand(gatherAll(x));
-      for (const auto& [node, rows] : in.lifts) out.B.col(j).segment<6>(6 * node) += rows.col(j);
-    }
-  }
-  for (long j = 0; j < nk; ++j) out.B.col(nb + j) = in.fixed->expand(in.normal->col(j));
-  return out;
-}
-
-CraigBamptonResult craigBampton(MPI_Comm comm, CraigBamptonBasis basis, Mat K_free, Mat M_free, const DofMap& free,
+CraigBamptonResult craigBampton(Comm comm, CraigBamptonBasis basis, SystemMatrix K_free, SystemMatrix M_free, const DofMap& free,
                                 const Eigen::MatrixXd& rigid) {
-  (void)comm;  // the products are PETSc's, on K_free's communicator
+  (void)comm;  // the products are the backend's, on K_free's communicator (PETSc) or none (serial)
   const Eigen::MatrixXd& B = basis.B;
   const long N = B.rows(), m = B.cols(), nk = m - basis.n_boundary;
   CraigBamptonResult out;

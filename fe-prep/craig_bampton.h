@@ -14,16 +14,14 @@
 // meaning (contracts.md, fe-prep, reduction: craig_bampton).
 // Two stages, so that the free body's matrices are assembled only after the
 // constraint modes' factorisation is freed: constraintModes, then craigBampton.
-#include <mpi.h>
-#include <petscmat.h>
 
 #include <Eigen/Dense>
 #include <functional>
 #include <map>
 #include <vector>
 
-#include "fe-prep/petsc_handles.h"
 #include "fe-prep/reference_conditions.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
@@ -43,7 +41,7 @@ void appendLifts(const std::vector<long>& nodes, const Eigen::MatrixXd& C, std::
 NodeRows liftRows(const std::vector<Lift>& lifts);
 
 struct ConstraintModeInput {
-  Mat K_fixed = nullptr;            // reduced with the reference conditions (T)
+  SystemMatrix K_fixed = nullptr;            // reduced with the reference conditions (T)
   const DofMap* fixed = nullptr;    // T
   long n_nodes = 0;
   long n_boundary = 0;
@@ -52,7 +50,7 @@ struct ConstraintModeInput {
   const Eigen::MatrixXd* normal = nullptr;  // (T's reduced DOF, n_normal) fixed-interface modes
   // K_fixed's factor from the fixed-interface eigen-solve (shift 0,
   // `ModalResult::factor_of_K`), or null: factorise here.
-  Mat factored = nullptr;
+  FactorRef factored = nullptr;
 };
 
 // The basis B = [Psi Phi] (6 n, n_boundary + n_normal), full nodal vectors:
@@ -66,7 +64,7 @@ struct CraigBamptonBasis {
   long n_boundary = 0;
   MumpsMemory factorisation;
 };
-CraigBamptonBasis constraintModes(MPI_Comm comm, const ConstraintModeInput& in);
+CraigBamptonBasis constraintModes(Comm comm, const ConstraintModeInput& in);
 
 struct CraigBamptonResult {
   Eigen::VectorXd eigenvalues;     // ascending
@@ -86,7 +84,7 @@ struct CraigBamptonResult {
 // reduced DOF, couplings only), diagonalised, rigid motions removed. Works in
 // one dense (free DOF, n_basis) block beside B (none when `free` keeps every
 // DOF as it is: B itself is used) and the shapes it returns; B is released.
-CraigBamptonResult craigBampton(MPI_Comm comm, CraigBamptonBasis basis, Mat K_free, Mat M_free, const DofMap& free,
+CraigBamptonResult craigBampton(Comm comm, CraigBamptonBasis basis, SystemMatrix K_free, SystemMatrix M_free, const DofMap& free,
                                 const Eigen::MatrixXd& rigid);
 
 }  // namespace fc::feprep

@@ -124,7 +124,7 @@ std::vector<Eigen::MatrixXd> projectShellGeometricStiffness(const Mesh& mesh, co
   return out;
 }
 
-std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                         const Eigen::MatrixXd& shapes) {
   return responseGeometricStiffness(mesh, solveStatic(comm, K, map, loads), model, shapes);
@@ -149,13 +149,13 @@ std::vector<Eigen::MatrixXd> responseGeometricStiffness(const Mesh& mesh, const 
   return out;
 }
 
-std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> modalGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                      const Eigen::VectorXd& lumped, const StressStiffnessModel& model,
                                                      const Eigen::MatrixXd& shapes) {
   return loadCaseGeometricStiffness(comm, mesh, map, K, inertialLoadCases(mesh.nodes, lumped), model, shapes);
 }
 
-std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                          const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                          const Eigen::MatrixXd& shapes) {
   return loadCaseGeometricStiffness(comm, mesh, map, K, loads, model, shapes);

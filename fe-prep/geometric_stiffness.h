@@ -19,8 +19,6 @@
 // geometric_stiffening.h). This is SIMPACK's first-order SID term (Wallrapp,
 // Nonlinear Dyn. 5 (1994) 451: the geometric stiffness of unit inertia loads)
 // and MBDyn's modal stress-stiffening per load case.
-#include <mpi.h>
-#include <petscmat.h>
 
 #include <Eigen/Dense>
 #include <array>
@@ -33,6 +31,7 @@
 #include "fe-prep/elements/shell_triangle.h"
 #include "fe-prep/mesh.h"
 #include "fe-prep/reference_conditions.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
@@ -82,7 +81,7 @@ std::vector<Eigen::MatrixXd> projectShellGeometricStiffness(const Mesh& mesh, co
 // The static response of the reference-held body (K, map) to the load cases
 // (6 n, n_cases), its stress state and the projection on the shapes (6 n,
 // n_modes), beams and shells summed. Returns n_cases symmetric matrices.
-std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> loadCaseGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                         const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                         const Eigen::MatrixXd& shapes);
 
@@ -93,7 +92,7 @@ std::vector<Eigen::MatrixXd> responseGeometricStiffness(const Mesh& mesh, const 
                                                         const StressStiffnessModel& model, const Eigen::MatrixXd& shapes);
 
 // The inertial cases: unit inertial loads on the lumped masses (6 n).
-std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> modalGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                      const Eigen::VectorXd& lumped, const StressStiffnessModel& model,
                                                      const Eigen::MatrixXd& shapes);
 
@@ -103,7 +102,7 @@ std::vector<Eigen::MatrixXd> modalGeometricStiffness(MPI_Comm comm, const Mesh& 
 // coupling as f = L^T e_k (interfaceLoads, the same loads as static_response),
 // then the same static solve, stress state and projection as the inertial
 // cases. loads: (6 n, 6). Returns 6 symmetric (n_modes, n_modes) matrices.
-std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(MPI_Comm comm, const Mesh& mesh, const DofMap& map, Mat K,
+std::vector<Eigen::MatrixXd> interfaceGeometricStiffness(Comm comm, const Mesh& mesh, const DofMap& map, SystemMatrix K,
                                                          const Eigen::MatrixXd& loads, const StressStiffnessModel& model,
                                                          const Eigen::MatrixXd& shapes);
 

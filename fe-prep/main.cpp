@@ -1,6 +1,8 @@
 // fe-prep BODY.yaml -o BODY.h5: a panel or a truss to a reduced flexible body.
-#include <slepcsys.h>
-
+// One source, two programs (fe-prep/CMakeLists.txt): fe-prep, the serial
+// backend, which hands a run it does not build to fe-prep-mpi, the PETSc
+// backend, with the same arguments (backend_choice.h); each is this main()
+// over its own la_backend.h.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -16,7 +18,7 @@
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
-#include "fe-prep/petsc_handles.h"
+#include "fe-prep/backend_choice.h"
 #include "fe-prep/xdmf_writer.h"
 
 namespace {
@@ -46,6 +48,9 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
                 it.static_error(3), it.static_error(4), it.static_error(5));
   }
   if (!b.reduction.empty()) std::printf("  basis: %s\n", b.reduction.c_str());
+  // Which program built it, and why when the serial one handed it over.
+  const char* why = std::getenv(fc::feprep::kHandOverVariable);
+  std::printf("  solver: %s%s%s\n", fc::feprep::backendName(), why && *why ? "; " : "", why && *why ? why : "");
   for (const auto& s : r.stages) {
     std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
     // MUMPS's own figure for the stage's factorisation: the share of the peak that is the factor.
@@ -62,28 +67,28 @@ int main(int argc, char** argv) {
   CLI::App app{"fe-prep: laminated shell and beam models to reduced flexible bodies (flexbody/1 HDF5 files)"};
   std::string input, output;
   bool quiet = false;
+  std::string backend = "auto";
   app.add_option("body", input, "body YAML file (keys: see the input reference below)")->required();
   app.add_option("-o,--output", output, "flexible body file to write (HDF5)")->required();
   app.add_flag("-q,--quiet", quiet, "no progress lines on stderr");
+  app.add_option("--backend", backend,
+                 "linear algebra: auto (the serial program for a body it builds, else fe-prep-mpi), serial "
+                 "(one process: MUMPS, ARPACK; no gmsh meshing), petsc (fe-prep-mpi: PETSc/SLEPc, MPI, gmsh)")
+      ->check(CLI::IsMember({"auto", "serial", "petsc"}));
   app.set_version_flag("--version", std::string("fe-prep ") + fc::version());
   fc::addInspectOption(app, "fe-prep");
   fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
 
-  // PETSc options come from PETSC_OPTIONS only: the command line belongs to CLI11.
-  if (SlepcInitialize(nullptr, nullptr, nullptr, nullptr)) {
-    std::fprintf(stderr, "fe-prep: error: SLEPc/PETSc initialisation failed\n");
-    return 1;
-  }
-  // After PETSc, which installs its own handlers: a termination signal removes
-  // the temporary being written and exits, on every rank. No partial output.
+  // The serial program hands the run to fe-prep-mpi here when it has more
+  // than one rank or --backend petsc asks; the PETSc one starts PETSc/SLEPc.
+  fc::feprep::LinearAlgebraRuntime la(argc, argv, backend);
+  if (la.failed()) return la.failed();
+  // A termination signal removes the temporary being written and exits, on
+  // every rank (after PETSc, which installs its own handlers). No partial output.
   fc::installTerminationHandlers("fe-prep", fc::TerminationPolicy::ExitNow);
-  // PETSc's errors come back as codes, each said once as a sentence by
-  // fe-prep's checks (an allocation failure as out of memory, with the stage),
-  // not as PETSc's multi-line trace; FLEXCOMP_PETSC_TRACE=1 keeps the trace.
-  if (!std::getenv("FLEXCOMP_PETSC_TRACE")) PetscPushErrorHandler(fc::feprep::recordingErrorHandler, nullptr);
-  int rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const fc::feprep::Comm comm = la.world();
+  const int rank = fc::feprep::commRank(comm);
   auto run = [&] {
     // Refuse a bad output path before any computing, not after.
     fc::checkOutputIsNotAnInput(output, {input});
@@ -92,12 +97,14 @@ int main(int argc, char** argv) {
     // buildFlexBody's progress bars name its own (meshing, assembly, eigen-solve).
     std::optional<fc::StageScope> stage(std::in_place, "reading the input");
     const fc::feprep::BodySpec spec = fc::feprep::readBodySpec(input);
+    // A body the serial program does not build goes to fe-prep-mpi now, before any work.
+    la.handOverIfNeeded(spec);
     fc::checkOutputIsNotAnInput(output, spec.input_files);
     fc::checkOutputIsNotAnInput(output, fc::inputFilesRead());
     fc::feprep::BuildOptions opt;
     opt.quiet = quiet;
     stage.emplace("building the body");
-    const fc::feprep::BuildResult r = fc::feprep::buildFlexBody(PETSC_COMM_WORLD, spec, opt);
+    const fc::feprep::BuildResult r = fc::feprep::buildFlexBody(comm, spec, opt);
     stage.emplace("writing " + output);
     if (rank == 0) {
       fc::Provenance prov;
@@ -125,6 +132,5 @@ int main(int argc, char** argv) {
       rc = 1;
     }
   }
-  SlepcFinalize();
   return rc;
 }

@@ -4,13 +4,11 @@
 // rigid-body motions the reference leaves free are found among the lowest
 // modes and removed: they are identified by their projection on the
 // geometric rigid-mode space, not by a threshold on lambda.
-#include <petscmat.h>
 
 #include <Eigen/Dense>
 #include <functional>
 #include <stdexcept>
-
-#include "fe-prep/petsc_handles.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
@@ -50,7 +48,7 @@ struct ModalResult {
   MumpsMemory factorisation;          // the shift-invert factorisation's (the largest of the solves)
   // With keep_factor and shift 0: the eigen-solve's MUMPS factor of K, for
   // MatSolve (its memory stays held until this is released).
-  OwnedMat factor_of_K;
+  FactorHandle factor_of_K;
 };
 
 // The request cannot be met: more modes than the body has with a finite
@@ -64,17 +62,17 @@ class ModeCountError : public std::runtime_error {
 // M (so a zero row and column), e.g. a shell node's drilling rotation, which
 // has stiffness (the drilling penalty) but no inertia. Each is an infinite
 // eigenvalue: at most N - masslessDofs(M) - r elastic modes exist.
-long masslessDofs(Mat M);
+long masslessDofs(SystemMatrix M);
 
 // The largest ||K r_j||_inf / (||K||_inf ||r_j||_inf) over the rigid basis's
 // columns: how far the geometric rigid motions are from null vectors of the
 // assembled K (rounding, ~1e-16, for the shell and beam elements; more for an
 // imported K written to a few digits).
-double rigidNullResidual(Mat K, const Eigen::MatrixXd& rigid);
+double rigidNullResidual(SystemMatrix K, const Eigen::MatrixXd& rigid);
 
 // rigid: reduced DOF x r basis of the admissible rigid motions (every rank).
 // progress(converged, wanted) is called on rank 0 during the iteration.
-ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
+ModalResult solveModes(Comm comm, SystemMatrix K, SystemMatrix M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
                        const std::function<void(long, long)>& progress = {});
 
 }  // namespace fc::feprep

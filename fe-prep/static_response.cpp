@@ -1,7 +1,5 @@
 #include "fe-prep/static_response.h"
 
-#include "fe-prep/petsc_handles.h"
-
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -20,33 +18,7 @@ Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f) {
   return r;
 }
 
-namespace {
-
-// K^-1 b for every column of the reduced right-hand sides (one factorisation).
-Eigen::MatrixXd solveReduced(MPI_Comm comm, Mat K, const Eigen::MatrixXd& rhs, const char* singular) {
-  OwnedKsp ksp = choleskySolver(comm, K);
-  OwnedVec b, x;
-  check(MatCreateVecs(K, &x, &b), "MatCreateVecs");
-  Eigen::MatrixXd out(rhs.rows(), rhs.cols());
-  for (long j = 0; j < rhs.cols(); ++j) {
-    setLocal(b, rhs.col(j));
-    check(KSPSolve(ksp, b, x), "KSPSolve");
-    KSPConvergedReason why;
-    check(KSPGetConvergedReason(ksp, &why), "KSPGetConvergedReason");
-    if (why < 0) {
-      PC pc;
-      check(KSPGetPC(ksp, &pc), "KSPGetPC");
-      throwIfOutOfMemory(pc, 0, "the stiffness");
-      throw std::runtime_error(singular);
-    }
-    out.col(j) = gatherAll(x);
-  }
-  return out;
-}
-
-}  // namespace
-
-Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces) {
+Eigen::MatrixXd solveStatic(Comm comm, SystemMatrix K, const DofMap& map, const Eigen::MatrixXd& forces) {
   Eigen::MatrixXd rhs(map.reduced, forces.cols());
   for (long j = 0; j < forces.cols(); ++j) rhs.col(j) = reduceForce(map, forces.col(j));
   const Eigen::MatrixXd x =
@@ -56,8 +28,8 @@ Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen
   return out;
 }
 
-Eigen::MatrixXd solveInertiaRelief(MPI_Comm comm, Mat K, Mat M, const DofMap& map, const Eigen::MatrixXd& rigid,
-                                   const Eigen::MatrixXd& forces) {
+Eigen::MatrixXd solveInertiaRelief(Comm comm, SystemMatrix K, SystemMatrix M, const DofMap& map,
+                                   const Eigen::MatrixXd& rigid, const Eigen::MatrixXd& forces) {
   const long r = rigid.cols(), n = map.reduced;
   Eigen::MatrixXd MR(n, r);
   for (long i = 0; i < r; ++i) MR.col(i) = multiply(M, rigid.col(i));
@@ -70,32 +42,20 @@ Eigen::MatrixXd solveInertiaRelief(MPI_Comm comm, Mat K, Mat M, const DofMap& ma
   for (long i = 0; i < r; ++i) Rn.col(i).normalize();
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rn.transpose());
   if (qr.rank() < r) throw std::logic_error("inertia relief: the rigid modes are not independent");
-  std::vector<PetscInt> support;
-  for (long i = 0; i < r; ++i) support.push_back(static_cast<PetscInt>(qr.colsPermutation().indices()(i)));
-  OwnedMat Ks;
-  check(MatDuplicate(K, MAT_COPY_VALUES, &Ks), "MatDuplicate");
-  PetscInt lo = 0, hi = 0;
-  check(MatGetOwnershipRange(Ks, &lo, &hi), "MatGetOwnershipRange");
-  std::vector<PetscInt> local;
-  for (PetscInt i : support)
-    if (i >= lo && i < hi) local.push_back(i);
-  OwnedVec diag;
-  check(MatCreateVecs(K, &diag, nullptr), "MatCreateVecs");
-  check(MatGetDiagonal(K, diag), "MatGetDiagonal");
-  PetscReal kmax = 0.0;
-  check(VecNorm(diag, NORM_INFINITY, &kmax), "VecNorm");
-  // The held DOF keep a diagonal of K's size (the factorisation's pivots stay alike).
-  check(MatZeroRowsColumns(Ks, static_cast<PetscInt>(local.size()), local.data(), kmax, nullptr, nullptr),
-        "MatZeroRowsColumns");
+  std::vector<long> support;
+  for (long i = 0; i < r; ++i) support.push_back(static_cast<long>(qr.colsPermutation().indices()(i)));
   Eigen::MatrixXd rhs(n, forces.cols());
   for (long j = 0; j < forces.cols(); ++j) {
     const Eigen::VectorXd f = reduceForce(map, forces.col(j));
     rhs.col(j) = f - MR * G.solve(rigid.transpose() * f);  // P f: balanced by the rigid-body inertia forces
-    for (PetscInt i : support) rhs(i, j) = 0.0;
+    for (long i : support) rhs(i, j) = 0.0;
   }
-  const Eigen::MatrixXd us = solveReduced(comm, Ks, rhs,
+  // The held DOF keep a diagonal of K's size (the factorisation's pivots stay alike).
+  double kmax = 0.0;
+  const Eigen::MatrixXd us = solveReduced(comm, K, rhs,
                                           "the stiffness on a statically determinate support is singular (the body "
-                                          "has a mechanism beyond its rigid motions)");
+                                          "has a mechanism beyond its rigid motions)",
+                                          support, &kmax);
   Eigen::MatrixXd out(forces.rows(), forces.cols());
   for (long j = 0; j < forces.cols(); ++j) {
     const Eigen::VectorXd u = us.col(j) - rigid * G.solve(MR.transpose() * us.col(j));  // P^T u_s

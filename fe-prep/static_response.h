@@ -12,24 +12,32 @@
 // p_jk = s_jk^2 / (lambda_j delta_k); the truncation error of the first n modes
 // e_k(n) = 1 - sum_{j<n} p_jk, the share of the static deflection they miss
 // (0 <= e <= 1 as the modes are K-orthogonal and complete).
-#include <mpi.h>
-#include <petscmat.h>
 
 #include <Eigen/Dense>
 #include <array>
 #include <vector>
 
 #include "fe-prep/reference_conditions.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
 // T^T f: a full nodal force vector to the reduced DOF of `map`.
 Eigen::VectorXd reduceForce(const DofMap& map, const Eigen::VectorXd& f);
 
+// K^-1 rhs for reduced right-hand sides (reduced DOF, m), one factorisation
+// (MUMPS, the backend's: fe-prep/la/*/); every rank gets the whole result.
+// `held`: reduced DOF replaced by unit rows and columns scaled to K's largest
+// diagonal (returned in *kmax), the support of an inertia-relief solve; the
+// right-hand side must be zero there. Throws std::runtime_error(singular) if
+// the factorisation finds K singular, fc::OutOfMemory if it runs out of memory.
+Eigen::MatrixXd solveReduced(Comm comm, SystemMatrix K, const Eigen::MatrixXd& rhs, const char* singular,
+                             const std::vector<long>& held = {}, double* kmax = nullptr);
+
 // Full nodal displacements (6 n, m) of the reduced system K (map) under full
 // nodal forces (6 n, m); MUMPS Cholesky, every rank gets the whole result.
 // Throws std::runtime_error if K is singular (rigid motions left free).
-Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen::MatrixXd& forces);
+Eigen::MatrixXd solveStatic(Comm comm, SystemMatrix K, const DofMap& map, const Eigen::MatrixXd& forces);
 
 // Inertia relief (free or partly held bodies, r >= 1 rigid motions left by the
 // reference; MSC Nastran's inertia relief, Craig & Kurdila sec. 19.3 on
@@ -44,7 +52,7 @@ Eigen::MatrixXd solveStatic(MPI_Comm comm, Mat K, const DofMap& map, const Eigen
 // equal to the sum over every elastic mode of phi phi^T / lambda). Returns the
 // full nodal displacements (6 n, m); every rank gets the whole result. Throws
 // std::runtime_error if K has a null space beyond R (a mechanism).
-Eigen::MatrixXd solveInertiaRelief(MPI_Comm comm, Mat K, Mat M, const DofMap& map, const Eigen::MatrixXd& rigid,
+Eigen::MatrixXd solveInertiaRelief(Comm comm, SystemMatrix K, SystemMatrix M, const DofMap& map, const Eigen::MatrixXd& rigid,
                                    const Eigen::MatrixXd& forces);
 
 struct StaticTruncation {

@@ -9,7 +9,7 @@
 
 namespace fc::feprep {
 
-Eigen::VectorXd importedFreeEigenvalues(MPI_Comm comm, const ImportedModel& model, long count) {
+Eigen::VectorXd importedFreeEigenvalues(Comm comm, const ImportedModel& model, long count) {
   DofMap map = buildDofMap(model.mesh, {});
   holdSolidRotations(map, model.solid);
   const Eigen::MatrixXd rigid_full = admissibleRigidModes(model.mesh, {});
@@ -22,9 +22,8 @@ Eigen::VectorXd importedFreeEigenvalues(MPI_Comm comm, const ImportedModel& mode
   return solveModes(comm, sys.K, sys.M, rigid, req).eigenvalues;
 }
 
-ImportedModel importStage(MPI_Comm comm, const BodySpec& spec, bool quiet) {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
+ImportedModel importStage(Comm comm, const BodySpec& spec, bool quiet) {
+  const int rank = commRank(comm);
   const MatricesSpec& ms = *spec.matrices;
   ImportedModel model = importMatrices(ms);
   const bool speak = rank == 0 && !quiet;
@@ -74,9 +73,8 @@ ImportedModel importStage(MPI_Comm comm, const BodySpec& spec, bool quiet) {
   return model;
 }
 
-ImportedLumping importedLumping(MPI_Comm comm, const ImportedModel& model, bool quiet) {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
+ImportedLumping importedLumping(Comm comm, const ImportedModel& model, bool quiet) {
+  const int rank = commRank(comm);
   const MassProjection p = rigidMassProjection(model.mesh.nodes, model.M);
   ImportedLumping l = importedNodalMasses(model.mesh.nodes, model.M, p);
   if (rank == 0 && !l.applied)

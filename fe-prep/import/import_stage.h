@@ -4,7 +4,6 @@
 // mass, centre, inertia, first frequencies next to the source code's own), the
 // nodal masses fitted to the imported M, and the checks of interfaces on solid
 // nodes. Kept apart so that build_body.cpp only branches into them.
-#include <mpi.h>
 
 #include <string>
 
@@ -12,21 +11,22 @@
 #include "fe-prep/body_spec.h"
 #include "fe-prep/import/imported_body.h"
 #include "fe-prep/interfaces.h"
+#include "la_backend.h"
 
 namespace fc::feprep {
 
 // Reads the model on every rank (the same files, the same errors) and, on rank
 // 0 unless quiet, prints the import report; warns (stderr, naming the quantity)
 // where the imported matrices disagree with the source beyond 1e-6 relative.
-ImportedModel importStage(MPI_Comm comm, const BodySpec& spec, bool quiet);
+ImportedModel importStage(Comm comm, const BodySpec& spec, bool quiet);
 
 // The first `count` elastic eigenvalues [rad^2/s^2] of the free imported K, M
 // (SLEPc, the same solver as the body's modes).
-Eigen::VectorXd importedFreeEigenvalues(MPI_Comm comm, const ImportedModel& model, long count);
+Eigen::VectorXd importedFreeEigenvalues(Comm comm, const ImportedModel& model, long count);
 
 // /mass/nodal of an imported body (importedNodalMasses), with a warning when the
 // fit could not be applied.
-ImportedLumping importedLumping(MPI_Comm comm, const ImportedModel& model, bool quiet);
+ImportedLumping importedLumping(Comm comm, const ImportedModel& model, bool quiet);
 
 // The exact rigid-body properties: the projection of the imported M.
 RigidProperties importedRigidProperties(const ImportedModel& model);

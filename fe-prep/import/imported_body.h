@@ -16,7 +16,7 @@
 
 #include "fe-prep/import/matrices_spec.h"
 #include "fe-prep/import/solid_faces.h"
-#include "fe-prep/assembly.h"
+#include "fe-prep/element_kernel.h"
 #include "fe-prep/body_inertia.h"
 #include "fe-prep/mesh.h"
 #include "fe-prep/reference_conditions.h"

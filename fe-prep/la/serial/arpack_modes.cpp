@@ -1,0 +1,192 @@
+// The serial backend's eigen-solve: K x = lambda M x by ARPACK's implicitly
+// restarted Lanczos in shift-invert mode (dsaupd/dseupd, mode 3, B = M: what
+// CalculiX's *FREQUENCY uses), (K - sigma M)^-1 applied by one sequential
+// MUMPS LDL^T factorisation. The rigid motions are solved for with the
+// elastic pairs (sigma < 0 below them) and removed by their share of the
+// rigid-motion space, as the PETSc path does for beams (modal_solver.h).
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "fe-prep/modal_solver.h"
+#include "mumps_factor.h"
+
+extern "C" {
+void dsaupd_(int* ido, const char* bmat, int* n, const char* which, int* nev, double* tol, double* resid, int* ncv,
+             double* v, int* ldv, int* iparam, int* ipntr, double* workd, double* workl, int* lworkl, int* info,
+             long bmat_len, long which_len);
+void dseupd_(int* rvec, const char* howmny, int* select, double* d, double* z, int* ldz, double* sigma,
+             const char* bmat, int* n, const char* which, int* nev, double* tol, double* resid, int* ncv, double* v,
+             int* ldv, int* iparam, int* ipntr, double* workd, double* workl, int* lworkl, int* info,
+             long howmny_len, long bmat_len, long which_len);
+}
+
+namespace fc::feprep {
+namespace {
+
+struct Pair {
+  double lambda;
+  Eigen::VectorXd x;  // M-normalised
+  double rigid_share;
+};
+
+// nev eigenpairs of K x = lambda M x nearest sigma (ARPACK mode 3); returns
+// the converged ones (eigenvalue, vector), at most nev.
+void lanczos(const SparseMatrix& M, const MumpsFactor& F, double sigma, long nev_l, long ncv_l, double tol,
+             Eigen::VectorXd& lambda, Eigen::MatrixXd& X, long& iterations) {
+  int n = static_cast<int>(F.size()), nev = static_cast<int>(nev_l), ncv = static_cast<int>(ncv_l), ldv = n;
+  int lworkl = ncv * (ncv + 8), info = 0, ido = 0;
+  std::vector<double> resid(static_cast<std::size_t>(n)), v(static_cast<std::size_t>(n) * static_cast<std::size_t>(ncv)),
+      workd(3 * static_cast<std::size_t>(n)), workl(static_cast<std::size_t>(lworkl));
+  int iparam[11] = {}, ipntr[11] = {};
+  iparam[0] = 1;     // exact shifts
+  iparam[2] = 1000;  // restarts, as the PETSc path's maximum iterations
+  iparam[6] = 3;     // shift-invert, generalized
+  auto vec = [&](int k) { return Eigen::Map<Eigen::VectorXd>(&workd[static_cast<std::size_t>(ipntr[k] - 1)], n); };
+  for (;;) {
+    dsaupd_(&ido, "G", &n, "LM", &nev, &tol, resid.data(), &ncv, v.data(), &ldv, iparam, ipntr, workd.data(),
+            workl.data(), &lworkl, &info, 1, 2);
+    if (ido == -1) {
+      auto out = vec(1);
+      out.noalias() = M.selfadjointView<Eigen::Upper>() * vec(0);
+      F.solve(out.data(), 1);
+    } else if (ido == 1) {
+      auto out = vec(1);
+      out = vec(2);  // M x, ARPACK's own
+      F.solve(out.data(), 1);
+    } else if (ido == 2) {
+      auto out = vec(1);
+      out.noalias() = M.selfadjointView<Eigen::Upper>() * vec(0);
+    } else {
+      break;
+    }
+  }
+  iterations = iparam[2];
+  if (info < 0)
+    throw ModeCountError("the eigen-solver (ARPACK dsaupd) failed for " + std::to_string(nev) + " modes (info " +
+                         std::to_string(info) + "): ask for fewer modes");
+  const int nconv = iparam[4];
+  if (nconv <= 0) {
+    lambda.resize(0);
+    X.resize(n, 0);
+    return;
+  }
+  int rvec = 1, ierr = 0;
+  std::vector<int> select(static_cast<std::size_t>(ncv));
+  lambda.resize(nev);
+  X.resize(n, nev);
+  double s = sigma;
+  dseupd_(&rvec, "A", select.data(), lambda.data(), X.data(), &ldv, &s, "G", &n, "LM", &nev, &tol, resid.data(), &ncv,
+          v.data(), &ldv, iparam, ipntr, workd.data(), workl.data(), &lworkl, &ierr, 1, 1, 2);
+  if (ierr != 0)
+    throw ModeCountError("the eigen-solver (ARPACK dseupd) failed (info " + std::to_string(ierr) + "): ask for fewer modes");
+  lambda.conservativeResize(std::min(nconv, nev));
+  X.conservativeResize(Eigen::NoChange, std::min(nconv, nev));
+}
+
+}  // namespace
+
+ModalResult solveModes(Comm, SystemMatrix K, SystemMatrix M, const Eigen::MatrixXd& rigid, const ModalRequest& request,
+                       const std::function<void(long, long)>& progress) {
+  const long N = K->rows(), r = rigid.cols();
+  // Massless DOF (drilling rotations) are infinite eigenvalues: only
+  // N - massless - r elastic modes exist, and the Lanczos basis must stay
+  // within the massive part (below).
+  const long massive = N - masslessDofs(M) - request.multipliers;
+  const long elastic_available = massive - r;
+  if (elastic_available <= 0) throw ModeCountError("the model has no elastic degrees of freedom that carry mass");
+  // The rigid share of a mode: b^T G^-1 b, b = R^T M x, G = R^T M R.
+  Eigen::MatrixXd MR(N, r);
+  for (long j = 0; j < r; ++j) MR.col(j) = multiply(M, rigid.col(j));
+  const Eigen::MatrixXd G = rigid.transpose() * MR;
+  const Eigen::MatrixXd Ginv = r ? Eigen::MatrixXd(G.ldlt().solve(Eigen::MatrixXd::Identity(r, r))) : Eigen::MatrixXd();
+  ModalResult result;
+  // Not deflated (optional here): the rigid pairs are solved for and removed.
+  if (request.deflate_rigid) result.rigid_null_residual = rigidNullResidual(K, rigid);
+  const double lambda_max = request.max_frequency_hz > 0 ? std::pow(2 * M_PI * request.max_frequency_hz, 2) : 0.0;
+  long wanted = request.modes > 0 ? std::min(request.modes, elastic_available) : std::min<long>(12, elastic_available);
+  const double sigma = r > 0 ? request.shift : 0.0;
+  // One factorisation of K - sigma M serves every pass of max_frequency's doubling.
+  const auto F = std::make_shared<MumpsFactor>(*K, sigma != 0.0 ? &*M : nullptr, sigma, "K - sigma M",
+                                               "K - sigma M is singular: the shift hit an eigenvalue");
+  result.factorisation = F->memory();
+  for (;;) {
+    const long nev = std::min<long>(wanted + r, massive);
+    // SLEPc's basis size, max(2 nev, nev + 15), within the DOF that carry mass
+    // (the PETSc path's choice); ARPACK needs nev < ncv <= N.
+    long ncv = std::max<long>(nev, std::min<long>(std::max<long>(2 * nev, nev + 15), nev + (massive - nev) / 2));
+    ncv = std::min<long>(std::max<long>(ncv, nev + 1), N);
+    if (nev >= ncv)
+      throw ModeCountError("the eigen-solver cannot seek " + std::to_string(nev) + " modes (rigid ones included) in " +
+                           std::to_string(N) + " DOF: ask for fewer modes");
+    Eigen::VectorXd lambda;
+    Eigen::MatrixXd X;
+    long its = 0;
+    lanczos(*M, *F, sigma, nev, ncv, request.tolerance, lambda, X, its);
+    result.iterations += its;
+    if (progress) progress(std::min<long>(lambda.size(), nev), nev);
+    if (lambda.size() < nev)
+      throw ModeCountError("the eigen-solver converged " + std::to_string(lambda.size()) + " of " + std::to_string(nev) +
+                           " modes (rigid ones included); ask for fewer modes");
+    std::vector<Pair> pairs;
+    for (long i = 0; i < lambda.size(); ++i) {
+      Eigen::VectorXd x = X.col(i);
+      const Eigen::VectorXd Mx = multiply(M, x);
+      const double xmx = x.dot(Mx);
+      x /= std::sqrt(xmx);
+      const Eigen::VectorXd b = MR.transpose() * x;
+      const double share = r ? b.dot(Ginv * b) : 0.0;
+      // A sign convention makes files comparable between runs: largest entry
+      // positive (over the nodes' rows: the patches' multiplier rows come last).
+      Eigen::Index imax;
+      x.head(N - request.multipliers).cwiseAbs().maxCoeff(&imax);
+      if (x(imax) < 0) x = -x;
+      pairs.push_back({lambda(i), std::move(x), share});
+    }
+    X.resize(0, 0);
+    // The r modes with the largest rigid share are the rigid ones.
+    std::vector<std::size_t> order(pairs.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return pairs[a].rigid_share > pairs[b].rigid_share; });
+    std::vector<Pair> kept, removed;
+    for (std::size_t k = 0; k < order.size(); ++k) (static_cast<long>(k) < r ? removed : kept).push_back(std::move(pairs[order[k]]));
+    auto by_lambda = [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; };
+    std::sort(kept.begin(), kept.end(), by_lambda);
+    std::sort(removed.begin(), removed.end(), by_lambda);
+    const bool exhausted = nev >= massive;
+    if (lambda_max > 0 && !exhausted && (kept.empty() || kept.back().lambda <= lambda_max)) {
+      wanted = std::min<long>(2 * wanted, elastic_available);
+      continue;
+    }
+    long keep = static_cast<long>(kept.size());
+    if (lambda_max > 0) {
+      keep = 0;
+      while (keep < static_cast<long>(kept.size()) && kept[static_cast<std::size_t>(keep)].lambda <= lambda_max) ++keep;
+    } else {
+      keep = std::min<long>(keep, wanted);
+    }
+    result.eigenvalues.resize(keep);
+    result.vectors.resize(N, keep);
+    for (long k = 0; k < keep; ++k) {
+      result.eigenvalues(k) = kept[static_cast<std::size_t>(k)].lambda;
+      result.vectors.col(k) = kept[static_cast<std::size_t>(k)].x;
+      result.rigid_projection_max = std::max(result.rigid_projection_max, kept[static_cast<std::size_t>(k)].rigid_share);
+    }
+    result.deflated = false;
+    result.rigid_eigenvalues.resize(r);
+    for (long k = 0; k < r; ++k) {
+      result.rigid_eigenvalues(k) = removed[static_cast<std::size_t>(k)].lambda;
+      result.rigid_projection_min = std::min(result.rigid_projection_min, removed[static_cast<std::size_t>(k)].rigid_share);
+    }
+    // Shift 0 factorised K itself: kept for the Craig-Bampton constraint modes.
+    if (request.keep_factor && sigma == 0.0) result.factor_of_K = FactorHandle(F);
+    break;
+  }
+  return result;
+}
+
+}  // namespace fc::feprep
