@@ -29,18 +29,21 @@ namespace {
 
 struct Pair {
   double lambda;
-  Eigen::VectorXd x;  // M-normalised
+  long column;  // of the Lanczos basis's storage, M-normalised there
   double rigid_share;
 };
 
-// nev eigenpairs of K x = lambda M x nearest sigma (ARPACK mode 3); returns
-// the converged ones (eigenvalue, vector), at most nev.
+// nev eigenpairs of K x = lambda M x nearest sigma (ARPACK mode 3): the
+// converged ones (at most nev), their vectors in the first columns of `v`,
+// the Lanczos basis's own storage (n x ncv; dseupd may write the Ritz
+// vectors over it), so that no second n x nev block is held.
 void lanczos(const SparseMatrix& M, const MumpsFactor& F, double sigma, long nev_l, long ncv_l, double tol,
-             Eigen::VectorXd& lambda, Eigen::MatrixXd& X, long& iterations) {
+             Eigen::VectorXd& lambda, std::vector<double>& v, long& iterations) {
   int n = static_cast<int>(F.size()), nev = static_cast<int>(nev_l), ncv = static_cast<int>(ncv_l), ldv = n;
   int lworkl = ncv * (ncv + 8), info = 0, ido = 0;
-  std::vector<double> resid(static_cast<std::size_t>(n)), v(static_cast<std::size_t>(n) * static_cast<std::size_t>(ncv)),
-      workd(3 * static_cast<std::size_t>(n)), workl(static_cast<std::size_t>(lworkl));
+  v.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(ncv), 0.0);
+  std::vector<double> resid(static_cast<std::size_t>(n)), workd(3 * static_cast<std::size_t>(n)),
+      workl(static_cast<std::size_t>(lworkl));
   int iparam[11] = {}, ipntr[11] = {};
   iparam[0] = 1;     // exact shifts
   iparam[2] = 1000;  // restarts, as the PETSc path's maximum iterations
@@ -71,20 +74,18 @@ void lanczos(const SparseMatrix& M, const MumpsFactor& F, double sigma, long nev
   const int nconv = iparam[4];
   if (nconv <= 0) {
     lambda.resize(0);
-    X.resize(n, 0);
     return;
   }
   int rvec = 1, ierr = 0;
   std::vector<int> select(static_cast<std::size_t>(ncv));
   lambda.resize(nev);
-  X.resize(n, nev);
   double s = sigma;
-  dseupd_(&rvec, "A", select.data(), lambda.data(), X.data(), &ldv, &s, "G", &n, "LM", &nev, &tol, resid.data(), &ncv,
+  // Z = V: ARPACK's documented use (dseupd.f: "Z may be the same as V").
+  dseupd_(&rvec, "A", select.data(), lambda.data(), v.data(), &ldv, &s, "G", &n, "LM", &nev, &tol, resid.data(), &ncv,
           v.data(), &ldv, iparam, ipntr, workd.data(), workl.data(), &lworkl, &ierr, 1, 1, 2);
   if (ierr != 0)
     throw ModeCountError("the eigen-solver (ARPACK dseupd) failed (info " + std::to_string(ierr) + "): ask for fewer modes");
   lambda.conservativeResize(std::min(nconv, nev));
-  X.conservativeResize(Eigen::NoChange, std::min(nconv, nev));
 }
 
 }  // namespace
@@ -123,20 +124,19 @@ ModalResult solveModes(Comm, SystemMatrix K, SystemMatrix M, const Eigen::Matrix
       throw ModeCountError("the eigen-solver cannot seek " + std::to_string(nev) + " modes (rigid ones included) in " +
                            std::to_string(N) + " DOF: ask for fewer modes");
     Eigen::VectorXd lambda;
-    Eigen::MatrixXd X;
+    std::vector<double> store;
     long its = 0;
-    lanczos(*M, *F, sigma, nev, ncv, request.tolerance, lambda, X, its);
+    lanczos(*M, *F, sigma, nev, ncv, request.tolerance, lambda, store, its);
     result.iterations += its;
     if (progress) progress(std::min<long>(lambda.size(), nev), nev);
     if (lambda.size() < nev)
       throw ModeCountError("the eigen-solver converged " + std::to_string(lambda.size()) + " of " + std::to_string(nev) +
                            " modes (rigid ones included); ask for fewer modes");
     std::vector<Pair> pairs;
+    Eigen::Map<Eigen::MatrixXd> X(store.data(), N, static_cast<long>(store.size()) / std::max<long>(N, 1));
     for (long i = 0; i < lambda.size(); ++i) {
-      Eigen::VectorXd x = X.col(i);
-      const Eigen::VectorXd Mx = multiply(M, x);
-      const double xmx = x.dot(Mx);
-      x /= std::sqrt(xmx);
+      auto x = X.col(i);
+      x /= std::sqrt(x.dot(multiply(M, x)));
       const Eigen::VectorXd b = MR.transpose() * x;
       const double share = r ? b.dot(Ginv * b) : 0.0;
       // A sign convention makes files comparable between runs: largest entry
@@ -144,9 +144,8 @@ ModalResult solveModes(Comm, SystemMatrix K, SystemMatrix M, const Eigen::Matrix
       Eigen::Index imax;
       x.head(N - request.multipliers).cwiseAbs().maxCoeff(&imax);
       if (x(imax) < 0) x = -x;
-      pairs.push_back({lambda(i), std::move(x), share});
+      pairs.push_back({lambda(i), i, share});
     }
-    X.resize(0, 0);
     // The r modes with the largest rigid share are the rigid ones.
     std::vector<std::size_t> order(pairs.size());
     std::iota(order.begin(), order.end(), 0);
@@ -173,7 +172,7 @@ ModalResult solveModes(Comm, SystemMatrix K, SystemMatrix M, const Eigen::Matrix
     result.vectors.resize(N, keep);
     for (long k = 0; k < keep; ++k) {
       result.eigenvalues(k) = kept[static_cast<std::size_t>(k)].lambda;
-      result.vectors.col(k) = kept[static_cast<std::size_t>(k)].x;
+      result.vectors.col(k) = X.col(kept[static_cast<std::size_t>(k)].column);
       result.rigid_projection_max = std::max(result.rigid_projection_max, kept[static_cast<std::size_t>(k)].rigid_share);
     }
     result.deflated = false;

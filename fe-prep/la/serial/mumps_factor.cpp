@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,6 +18,9 @@ namespace {
 
 // Fortran communicator value that sequential MUMPS takes for "no MPI".
 constexpr int kUseCommWorld = -987654;
+
+// Below this size AMD's factor is smaller and faster than nested dissection's.
+constexpr long kNestedDissectionDofs = 30000;
 
 // MUMPS's INFOG(1) values that mean memory (its guide, "Error diagnostics"):
 // -8, -9, -14, -15 work arrays too small, -13 an allocation failed, -17, -20
@@ -49,9 +53,12 @@ MumpsFactor::MumpsFactor(const SparseMatrix& K, const SparseMatrix* M, double si
   m_->id.icntl[1] = -1;
   m_->id.icntl[2] = -1;
   m_->id.icntl[3] = 0;
-  // ICNTL(7) = 3: SCOTCH's nested dissection (the Debian seq build has SCOTCH
-  // and PORD, no METIS); measured against PORD in docs/fe-prep.md.
-  m_->id.icntl[6] = 3;
+  // ICNTL(7): the fill-reducing ordering (the Debian seq build has AMD, AMF,
+  // QAMD, PORD and SCOTCH, no METIS). Measured in docs/fe-prep.md, "Two
+  // programs": AMD below kNestedDissectionDofs, SCOTCH's nested dissection
+  // above. FLEXCOMP_MUMPS_ORDERING=<ICNTL(7)> overrides it (measurements).
+  m_->id.icntl[6] = n_ < kNestedDissectionDofs ? 0 : 3;
+  if (const char* o = std::getenv("FLEXCOMP_MUMPS_ORDERING")) m_->id.icntl[6] = std::atoi(o);
   // A = K - sigma M in coordinates (1-based), K's and M's upper triangles
   // merged column by column. Released as soon as MUMPS holds its own copy:
   // not alive at the factorisation's peak beyond the factorisation itself.
