@@ -93,6 +93,20 @@ def main(a_path, b_path, shifted=False):
     for i in names:
         compare(f"interfaces/{i}/shapes", shape_bound, per_mode=True, scale=largest("shapes"))
         compare(f"interfaces/{i}/static_compliance", 1e-9, scale=largest("static_compliance"))
+    # Modal geometric stiffness K_c = Phi^T K_G(u_c) Phi: per case, both mode
+    # indices flipped with the shapes; bound twice the shapes' (a product of
+    # two shapes, the static responses u_c solved to rounding).
+    S = np.outer(signs, signs)
+    for name in ["geometric_stiffness/matrices"] + [f"geometric_stiffness/interfaces/{i}/matrices"
+                                                    for i in b.get("geometric_stiffness/interfaces", {})]:
+        if (name in a) != (name in b):
+            bad.append(f"{name} in one file only")
+        elif name in b:
+            x, y = a[name][()] * S, b[name][()]
+            d = float(np.max(np.abs(x - y))) / max(float(np.max(np.abs(y))), 1e-300)
+            print(f"{name}: {d:.2e} (bound {2 * shape_bound:.1e})")
+            if not d <= 2 * shape_bound:
+                bad.append(f"{name}: {d:.2e} > {2 * shape_bound:.1e}")
     if bad:
         print("DIFFERENT: " + "; ".join(bad))
         return 1
