@@ -812,6 +812,7 @@ void eigenStage(BuildState& s) {
   peig.finish("(" + std::to_string(modal.eigenvalues.size()) + " modes, " + std::to_string(s.rigid.cols()) +
               (modal.deflated ? " rigid deflated" + std::string(null_residual) : " rigid removed") + ")");
   s.res.stages.push_back({"eigensolve", s.sw.seconds(), s.sw.cpu(), peakRssMb(), modal.factorisation.used_max_rank_mib});
+  s.res.stages.back().factor_library = modal.factorisation.library;
   s.res.rigid_eigenvalues = modal.rigid_eigenvalues;
   s.res.rigid_share_removed_min = modal.rigid_projection_min;
   s.res.rigid_share_kept_max = modal.rigid_projection_max;
@@ -910,6 +911,7 @@ void craigBamptonStage(BuildState& s) {
   if (cb.factored) basis.factorisation = s.modal.factorisation;
   s.modal.factor_of_K = FactorHandle();
   res.stages.push_back({"constraints", swr.seconds(), swr.cpu(), peakRssMb(), basis.factorisation.used_max_rank_mib});
+  res.stages.back().factor_library = basis.factorisation.library;
   swr.start();
   res.constraint_modes = cb.n_boundary;
   // The free body (its couplings only) for the reduced K and M, assembled

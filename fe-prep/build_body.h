@@ -22,6 +22,7 @@ struct StageStats {
   // MUMPS's own account of the stage's factorisation on this process (INFOG(21),
   // MiB; 0: none): the share of the peak that is the factor and its work space.
   double factorisation_mb = 0.0;
+  std::string factor_library = "MUMPS";  // whose figure that is (the serial backend: MUMPS or CHOLMOD)
 };
 
 struct BuildResult {

@@ -53,8 +53,8 @@ void printSummary(const fc::feprep::BodySpec& spec, const fc::feprep::BuildResul
   std::printf("  solver: %s%s%s\n", fc::feprep::backendName(), why && *why ? "; " : "", why && *why ? why : "");
   for (const auto& s : r.stages) {
     std::printf("  %-11s %8.3f s  (CPU %.3f s, peak RSS %.0f MB)", s.stage.c_str(), s.seconds, s.cpu_seconds, s.peak_rss_mb);
-    // MUMPS's own figure for the stage's factorisation: the share of the peak that is the factor.
-    if (s.factorisation_mb > 0) std::printf(" MUMPS factor %.0f MB", s.factorisation_mb);
+    // The factorisation's own figure (MUMPS's, or CHOLMOD's in the serial program): the share of the peak that is the factor.
+    if (s.factorisation_mb > 0) std::printf(" %s factor %.0f MB", s.factor_library.c_str(), s.factorisation_mb);
     std::printf("\n");
   }
   // The body file's write (the shapes transposed and stress data) can set the peak of its own.

@@ -221,7 +221,7 @@ MumpsMemory mumpsMemory(PC pc) {
 
 MumpsMemory largerMumpsMemory(const MumpsMemory& a, const MumpsMemory& b) {
   return {std::max(a.estimated_mib, b.estimated_mib), std::max(a.used_mib, b.used_mib),
-          std::max(a.used_max_rank_mib, b.used_max_rank_mib)};
+          std::max(a.used_max_rank_mib, b.used_max_rank_mib), "MUMPS"};
 }
 
 }  // namespace fc::feprep

@@ -86,6 +86,7 @@ struct MumpsMemory {
   double estimated_mib = 0.0;
   double used_mib = 0.0;
   double used_max_rank_mib = 0.0;
+  const char* library = "MUMPS";  // whose account (the serial backend also factorises with CHOLMOD)
 };
 MumpsMemory mumpsMemory(PC pc);
 // The larger of two accounts, field by field (a stage with several factorisations).

@@ -47,28 +47,29 @@ class SystemMatrix {
   SparseMatrix* a_ = nullptr;
 };
 
-// MUMPS's own account of a factorisation's memory, in MiB (as the PETSc
-// backend's: INFOG(17) estimated, INFOG(22) used, INFOG(21) the largest
-// process's, one process here).
+// A factorisation's own account of its memory, in MiB (as the PETSc
+// backend's, named for MUMPS there: INFOG(17) estimated, INFOG(22) used,
+// INFOG(21) the largest process's, one process here; CHOLMOD: its peak).
 struct MumpsMemory {
   double estimated_mib = 0.0;
   double used_mib = 0.0;
   double used_max_rank_mib = 0.0;
+  const char* library = "MUMPS";  // MUMPS or CHOLMOD
 };
 MumpsMemory largerMumpsMemory(const MumpsMemory& a, const MumpsMemory& b);
 
-class MumpsFactor;  // fe-prep/la/serial/mumps_factor.h
+class Factorisation;  // fe-prep/la/serial/factorisation.h
 // A factorisation kept past the solve that made it, and a borrowed reference.
 class FactorHandle {
  public:
   FactorHandle() = default;
-  explicit FactorHandle(std::shared_ptr<MumpsFactor> f) : f_(std::move(f)) {}
-  operator const MumpsFactor*() const { return f_.get(); }
+  explicit FactorHandle(std::shared_ptr<Factorisation> f) : f_(std::move(f)) {}
+  operator const Factorisation*() const { return f_.get(); }
 
  private:
-  std::shared_ptr<MumpsFactor> f_;
+  std::shared_ptr<Factorisation> f_;
 };
-using FactorRef = const MumpsFactor*;
+using FactorRef = const Factorisation*;
 
 struct AssembledSystem {
   SparseMatrix K, M;

@@ -23,10 +23,11 @@ constexpr int kUseCommWorld = -987654;
 constexpr long kNestedDissectionDofs = 30000;
 
 // MUMPS's INFOG(1) values that mean memory (its guide, "Error diagnostics"):
-// -8, -9, -14, -15 work arrays too small, -13 an allocation failed, -17, -20
-// buffers too small, -19 ICNTL(23) too small. The same list as the PETSc path's.
+// -7 the analysis's integer work space could not be allocated (met under
+// ulimit -v), -8, -9, -14, -15 work arrays too small, -13 an allocation
+// failed, -17, -20 buffers too small, -19 ICNTL(23) too small.
 bool memoryError(int infog1) {
-  for (int c : {-8, -9, -13, -14, -15, -17, -19, -20})
+  for (int c : {-7, -8, -9, -13, -14, -15, -17, -19, -20})
     if (infog1 == c) return true;
   return false;
 }
@@ -129,14 +130,14 @@ MumpsMemory MumpsFactor::memory() const {
   // MUMPS reports millions of bytes: in MiB as the PETSc path's mumpsMemory.
   const double mib = 1e6 / (1024.0 * 1024.0);
   return {static_cast<double>(m_->id.infog[16]) * mib, static_cast<double>(m_->id.infog[21]) * mib,
-          static_cast<double>(m_->id.infog[20]) * mib};
+          static_cast<double>(m_->id.infog[20]) * mib, "MUMPS"};
 }
 
 long MumpsFactor::infog(int i) const { return m_->id.infog[i - 1]; }
 
 MumpsMemory largerMumpsMemory(const MumpsMemory& a, const MumpsMemory& b) {
   return {std::max(a.estimated_mib, b.estimated_mib), std::max(a.used_mib, b.used_mib),
-          std::max(a.used_max_rank_mib, b.used_max_rank_mib)};
+          std::max(a.used_max_rank_mib, b.used_max_rank_mib), a.used_mib >= b.used_mib ? a.library : b.library};
 }
 
 }  // namespace serial

@@ -7,12 +7,12 @@
 #include <memory>
 #include <string>
 
-#include "la_backend.h"
+#include "factorisation.h"
 
 namespace fc::feprep {
 inline namespace serial {
 
-class MumpsFactor {
+class MumpsFactor : public Factorisation {
  public:
   // Analyses and factorises A = K - sigma M (upper triangles; M null: A = K).
   // `what` names A in errors ("the stiffness"); `singular` is the message of
@@ -21,14 +21,13 @@ class MumpsFactor {
   // MUMPS's figures. analysis_only: the ordering and MUMPS's estimates only.
   MumpsFactor(const SparseMatrix& K, const SparseMatrix* M, double sigma, const std::string& what,
               const std::string& singular, bool analysis_only = false);
-  ~MumpsFactor();
+  ~MumpsFactor() override;
   MumpsFactor(const MumpsFactor&) = delete;
   MumpsFactor& operator=(const MumpsFactor&) = delete;
 
-  long size() const { return n_; }
-  // x = A^-1 b in place for the nrhs columns of b (n x nrhs, column-major).
-  void solve(double* b, long nrhs) const;
-  MumpsMemory memory() const;
+  long size() const override { return n_; }
+  void solve(double* b, long nrhs) const override;
+  MumpsMemory memory() const override;
   // INFOG(i), 1-based as in MUMPS's guide.
   long infog(int i) const;
 

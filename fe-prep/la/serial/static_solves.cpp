@@ -11,6 +11,7 @@
 #include "common/memory.h"
 #include "fe-prep/craig_bampton.h"
 #include "fe-prep/static_response.h"
+#include "factorisation.h"
 #include "mumps_factor.h"
 
 namespace fc::feprep {
@@ -26,9 +27,9 @@ constexpr long kBlock = 32;
 
 Eigen::MatrixXd solveReduced(Comm, SystemMatrix K, const Eigen::MatrixXd& rhs, const char* singular,
                              const std::vector<long>& held, double* kmax_out) {
-  std::unique_ptr<MumpsFactor> F;
+  std::shared_ptr<Factorisation> F;
   if (held.empty()) {
-    F = std::make_unique<MumpsFactor>(*K, nullptr, 0.0, "the stiffness", singular);
+    F = factorise(*K, nullptr, 0.0, "the stiffness", singular);
   } else {
     // The held DOF's rows and columns replaced by K's largest diagonal.
     const double kmax = K->diagonal().cwiseAbs().maxCoeff();
@@ -40,7 +41,7 @@ Eigen::MatrixXd solveReduced(Comm, SystemMatrix K, const Eigen::MatrixXd& rhs, c
       for (SparseMatrix::InnerIterator it(Ks, j); it; ++it)
         if (is_held[static_cast<std::size_t>(it.row())] || is_held[static_cast<std::size_t>(j)])
           it.valueRef() = it.row() == j ? kmax : 0.0;
-    F = std::make_unique<MumpsFactor>(Ks, nullptr, 0.0, "the stiffness", singular);
+    F = factorise(Ks, nullptr, 0.0, "the stiffness", singular);
   }
   Eigen::MatrixXd x = rhs;
   for (long j = 0; j < x.cols(); j += kBlock) F->solve(x.col(j).data(), std::min(kBlock, x.cols() - j));
@@ -54,10 +55,10 @@ CraigBamptonBasis constraintModes(Comm, const ConstraintModeInput& in) {
   out.B.resize(N, nb + nk);
   // One factorisation of the fixed-interface K (the eigen-solve's when
   // given), nb solves in blocks of kBlock right-hand sides.
-  std::unique_ptr<MumpsFactor> own;
-  const MumpsFactor* F = in.factored;
+  std::shared_ptr<Factorisation> own;
+  const Factorisation* F = in.factored;
   if (!F) {
-    own = std::make_unique<MumpsFactor>(*in.K_fixed, nullptr, 0.0, "the fixed-interface stiffness",
+    own = factorise(*in.K_fixed, nullptr, 0.0, "the fixed-interface stiffness",
                                         "craig_bampton: the fixed-interface stiffness is singular (the reference leaves "
                                         "rigid motions free: clamp the boundary interfaces, or pin at least three)");
     F = own.get();
