@@ -112,7 +112,8 @@ ModalResult solveModes(Comm, SystemMatrix K, SystemMatrix M, const Eigen::Matrix
   long wanted = request.modes > 0 ? std::min(request.modes, elastic_available) : std::min<long>(12, elastic_available);
   const double sigma = r > 0 ? request.shift : 0.0;
   // One factorisation of K - sigma M serves every pass of max_frequency's doubling.
-  const std::shared_ptr<Factorisation> F = factorise(*K, sigma != 0.0 ? &*M : nullptr, sigma, "K - sigma M",
+  const std::shared_ptr<Factorisation> F = factorise(*K, sigma != 0.0 ? &*M : nullptr, sigma,
+                                                     sigma != 0.0 ? "K - sigma M" : "the stiffness",
                                                      sigma != 0.0 ? "K - sigma M is singular: the shift hit an eigenvalue"
                                                                   : "the stiffness with the reference conditions is singular");
   result.factorisation = F->memory();

@@ -1,5 +1,6 @@
 // The serial program's runtime: the decision to hand a run to fe-prep-mpi
 // (backend_choice.h) and the hand-over itself (execv, the same arguments).
+#include <omp.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -44,6 +45,11 @@ std::string handOver(char** argv, const std::string& why) {
 }  // namespace
 
 LinearAlgebraRuntime::LinearAlgebraRuntime(int, char** argv, const std::string& backend) : argv_(argv), backend_(backend) {
+  // One thread, as the PETSc program's ranks: CHOLMOD's OpenMP regions ask for
+  // 4 threads whatever OMP_NUM_THREADS says, and under an address-space limit
+  // libgomp's thread creation failed with an abort of its own (not fe-prep's
+  // out-of-memory message). No active parallel level runs every region on this thread.
+  omp_set_max_active_levels(0);
   const long ranks = launcherRanks();
   if (backend == "serial" && ranks > 1) {
     std::fprintf(stderr, "fe-prep: error: --backend serial runs on one process, not %ld MPI ranks; run it without "
