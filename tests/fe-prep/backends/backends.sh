@@ -81,6 +81,26 @@ grep -q "fe-prep: error: --backend serial cannot build this body: the panel is m
 "$FP" "$HERE/deck_static_correction.yaml" -o "$W/sc.h5" > "$W/sc.log" 2>&1 || bad "static correction (auto) failed: $(tail -3 "$W/sc.log")"
 grep -q "solver: petsc.*static_correction} is built by the PETSc path only" "$W/sc.log" ||
   bad "static correction: no hand-over said: $(grep solver "$W/sc.log")"
+# 4. Out of memory in the serial program: under ever larger address-space limits
+# (from below the libraries' floor up to the first success), every failure is
+# the loader's (below the floor) or fe-prep's own: exit 1, "out of memory in
+# stage ...", no output; at least one such (MUMPS's -13, CHOLMOD's status, a
+# refused estimate or an allocation of fe-prep's).
+clean=0
+for kb in $(seq 20000 3000 200000); do
+  rm -f "$W"/oom.*
+  (ulimit -v $kb; exec "$FP" "$HERE/deck_cb_patches.yaml" -o "$W/oom.h5" -q) > "$W/oom.log" 2>&1
+  rc=$?
+  [ $rc = 0 ] && break
+  if grep -q "error while loading shared libraries\|failed to map segment" "$W/oom.log"; then continue; fi
+  if [ $rc = 1 ] && grep -q "fe-prep: error: out of memory in stage '.*no output was written" "$W/oom.log" && ! ls "$W"/oom.h5* > /dev/null 2>&1; then
+    clean=$((clean + 1))
+  else
+    bad "ulimit -v $kb: exit $rc, not a clean out-of-memory stop: $(tail -c 300 "$W/oom.log")"
+  fi
+done
+[ $clean -gt 0 ] || bad "no out-of-memory stop of the serial program was seen below its first success ($kb KB)"
+echo "out of memory: $clean clean stops below ulimit -v $kb KB"
 if [ $fails -gt 0 ]; then
   echo "$fails failure(s)"
   exit 1
