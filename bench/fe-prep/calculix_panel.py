@@ -34,7 +34,12 @@ counts.
       with (mx + 1)(my + 1) as close as the grid allows to the S8R grid's node
       count (corners and mid-sides, 6 DOF each in both codes) and cells
       within 10 % of square. fe-prep reads it through `mesh: {file}` (no
-      meshing inside its timed run, as CalculiX's deck). Prints its counts."""
+      meshing inside its timed run, as CalculiX's deck). Prints its counts.
+  ... --bdf PANEL.bdf
+      the same grid as a Nastran bulk-data deck (free field: GRID, CTRIA3,
+      PSHELL with MID3 given, i.e. DST with TS/T = 5/6, MAT1), which fe-prep
+      reads with its own parser: no gmsh in its run (docs/nastran.md).
+      With --msh, both files hold the same nodes and triangles."""
 import argparse
 
 import numpy as np
@@ -45,10 +50,12 @@ ap.add_argument("ny", type=int)
 ap.add_argument("out")
 ap.add_argument("--craig-bampton", type=float, default=None, metavar="R")
 ap.add_argument("--msh", default=None)
+ap.add_argument("--bdf", default=None)
 args = ap.parse_args()
 nx, ny, out = args.nx, args.ny, args.out
 cb_radius = args.craig_bampton
 L, W = 2.0, 1.3
+E, NU, RHO, T = 159.0e9, 0.38, 1610.0, 0.002  # as in the *MATERIAL lines below
 POINTS = [(x, y) for x in (-0.9, -0.3, 0.3, 0.9) for y in (-0.55, 0.55)]
 # Node grid (2 nx + 1) x (2 ny + 1) without the quads' centre points.
 ids, xy = {}, {}
@@ -151,7 +158,7 @@ open(out, "w").write("\n".join(lines) + "\n")
 shell = 6 * (n - (8 if cb_radius is not None else 0))
 print(f"{n} nodes, {e} S8R elements, {shell} shell DOF")
 
-if args.msh:
+if args.msh or args.bdf:
     target = (2 * nx + 1) * (2 * ny + 1) - nx * ny
     my0 = np.sqrt(target * W / L)
     best = None
@@ -162,21 +169,31 @@ if args.msh:
         cand = (abs((mx + 1) * (my + 1) - target), mx, my)
         best = cand if best is None or cand < best else best
     _, mx, my = best
-    with open(args.msh, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"panel\"\n$EndPhysicalNames\n")
-        f.write(f"$Nodes\n{(mx + 1) * (my + 1)}\n")
-        f.write("".join(f"{j * (mx + 1) + i + 1} {-L / 2 + L * i / mx:.12g} {-W / 2 + W * j / my:.12g} 0\n"
-                        for j in range(my + 1) for i in range(mx + 1)))
-        f.write(f"$EndNodes\n$Elements\n{2 * mx * my}\n")
-        rows, t = [], 0
-        for j in range(my):
-            for i in range(mx):
-                a = j * (mx + 1) + i + 1
-                b, c, d = a + 1, a + mx + 2, a + mx + 1          # counter-clockwise a b c d
-                tris = ((a, b, c), (a, c, d)) if (i + j) % 2 == 0 else ((a, b, d), (b, c, d))
-                for tri in tris:
-                    t += 1
-                    rows.append(f"{t} 2 2 1 1 {tri[0]} {tri[1]} {tri[2]}\n")
-        f.write("".join(rows))
-        f.write("$EndElements\n")
+    grid = [(j * (mx + 1) + i + 1, -L / 2 + L * i / mx, -W / 2 + W * j / my)
+            for j in range(my + 1) for i in range(mx + 1)]
+    tris = []
+    for j in range(my):
+        for i in range(mx):
+            a = j * (mx + 1) + i + 1
+            b, c, d = a + 1, a + mx + 2, a + mx + 1          # counter-clockwise a b c d
+            tris += ((a, b, c), (a, c, d)) if (i + j) % 2 == 0 else ((a, b, d), (b, c, d))
+    if args.msh:
+        with open(args.msh, "w") as f:
+            f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"panel\"\n$EndPhysicalNames\n")
+            f.write(f"$Nodes\n{len(grid)}\n")
+            f.write("".join(f"{g} {x:.12g} {y:.12g} 0\n" for g, x, y in grid))
+            f.write(f"$EndNodes\n$Elements\n{len(tris)}\n")
+            f.write("".join(f"{t + 1} 2 2 1 1 {a} {b} {c}\n" for t, (a, b, c) in enumerate(tris)))
+            f.write("$EndElements\n")
+    if args.bdf:
+        # The material and thickness of the S8R deck; PSHELL's MID3 = MID1
+        # selects fe-prep's DST (transverse shear, TS/T blank = 5/6), the
+        # element the .msh run's `element: dst` region gives.
+        with open(args.bdf, "w") as f:
+            f.write("$ fe-prep benchmark panel (bench/fe-prep/calculix_panel.py)\nBEGIN BULK\n")
+            f.write(f"MAT1,1,{E:.12e},,{NU:.12e},{RHO:.12e}\n")
+            f.write(f"PSHELL,1,1,{T:.12e},1,1.0,1\n")
+            f.write("".join(f"GRID,{g},,{x:.12g},{y:.12g},0.0\n" for g, x, y in grid))
+            f.write("".join(f"CTRIA3,{t + 1},1,{a},{b},{c}\n" for t, (a, b, c) in enumerate(tris)))
+            f.write("ENDDATA\n")
     print(f"{(mx + 1) * (my + 1)} nodes, {2 * mx * my} triangles ({mx} x {my}), {6 * (mx + 1) * (my + 1)} shell DOF")

@@ -4,9 +4,11 @@
 # (docs/benchmarks.md, fe-prep against CalculiX). The panel: 2.0 x 1.3 m, 2 mm,
 # E = 159 GPa, nu = 0.38, rho = 1610. Both codes get their mesh as a file
 # written by `calculix_panel.py` before the timed runs: CalculiX a structured
-# S8R grid (its deck), fe-prep (MESH=file, the default) a structured grid of
-# DST triangles with as many nodes as the S8R grid has (equal shell DOF, 6 a
-# node; a gmsh 2.2 .msh read through `mesh: {file}`). MESH=gmsh instead has
+# S8R grid (its deck), fe-prep a structured grid of DST triangles with as many
+# nodes as the S8R grid has (equal shell DOF, 6 a node): MESH=nastran (the
+# default) as a Nastran bulk-data deck (GRID, CTRIA3, PSHELL, MAT1) that
+# fe-prep reads with its own parser, MESH=file as a gmsh 2.2 .msh read through
+# gmsh (the same nodes and triangles: the same body). MESH=gmsh instead has
 # fe-prep mesh the rectangle itself inside its timed run (gmsh, unstructured
 # DST at the requested DOF), as the earlier tables did. The sizes are the
 # user's model sizes, and both are converged to < 0.1 % in f1 from 1e4 DOF up
@@ -33,7 +35,7 @@
 #   bench/fe-prep/compare.sh BUILD_DIR [DOF ...]   (default 1e3 1e4 1e5 3e5 1e6)
 #   unattended at the large sizes, CalculiX measured too (~13 GB at 1e6):
 #   CCX_MAX_DOF=2000000 bench/fe-prep/compare.sh build 300000 1000000
-#   REDUCTIONS="free craig_bampton" (default both), MESH=file|gmsh (default file),
+#   REDUCTIONS="free craig_bampton" (default both), MESH=nastran|file|gmsh (default nastran),
 #   KEEP=DIR keeps the outputs
 #   (and the CalculiX rows the 1e6 estimate is fitted to, across calls).
 set -euo pipefail
@@ -52,8 +54,8 @@ lock=${BIGRUN_LOCK:-}
 [ -z "$lock" ] && [ -d /work/tmp ] && lock=/work/tmp/bigrun.lock
 [ "$lock" = none ] && lock=""   # the caller holds the lock already (a nested flock would wait forever)
 reductions=${REDUCTIONS:-free craig_bampton}
-mesh_mode=${MESH:-file}
-case "$mesh_mode" in file|gmsh) ;; *) echo "compare.sh: MESH=$mesh_mode: expected file or gmsh" >&2; exit 2 ;; esac
+mesh_mode=${MESH:-nastran}
+case "$mesh_mode" in nastran|file|gmsh) ;; *) echo "compare.sh: MESH=$mesh_mode: expected nastran, file or gmsh" >&2; exit 2 ;; esac
 if [ -n "${KEEP:-}" ]; then work=$KEEP; mkdir -p "$work"; else work=$(mktemp -d); trap 'rm -rf "$work"' EXIT; fi
 export OMP_NUM_THREADS=1 FLEXCOMP_QUIET=1
 # Both codes on the same BLAS: fe-prep links serial OpenBLAS when it is
@@ -64,7 +66,11 @@ blas=$(ldd "$feprep" | awk '/libopenblas/ { print $3; exit }')
 ccx_env=(env)
 [ -n "$blas" ] && ccx_env=(env LD_PRELOAD="$blas")
 echo "BLAS: ${blas:-system libblas.so.3} (both codes)"
-echo "fe-prep's mesh: $([ "$mesh_mode" = file ] && echo "structured DST grid read from a .msh written before the run (equal DOF to the S8R deck)" || echo "gmsh, inside fe-prep's run")"
+case "$mesh_mode" in
+  nastran) echo "fe-prep's mesh: structured DST grid read from a Nastran deck written before the run (equal DOF to the S8R deck)" ;;
+  file) echo "fe-prep's mesh: structured DST grid read from a .msh (through gmsh) written before the run (equal DOF to the S8R deck)" ;;
+  gmsh) echo "fe-prep's mesh: gmsh, inside fe-prep's run" ;;
+esac
 echo
 
 # "wall_s cpu_s peak_MB" of a command run in directory $1, stdout to $2.
@@ -80,11 +86,15 @@ load() { awk '{print $1}' /proc/loadavg; }
 feprep_yaml() {  # dof reduction radius
   local h
   h=$(awk -v d="$1" 'BEGIN{n=d/3; printf "%.6g", sqrt(4*2.6/(sqrt(3)*n))}')  # DOF ~ 6 nodes ~ 3 triangles
-  echo "materials:"
-  echo "  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}"
+  if [ "$mesh_mode" != nastran ]; then
+    echo "materials:"
+    echo "  cfrp_iso: {type: isotropic, E: 159.0e9, nu: 0.38, rho: 1610}"
+  fi
   echo "body:"
   echo "  name: bench"
-  if [ "$mesh_mode" = file ]; then
+  if [ "$mesh_mode" = nastran ]; then
+    echo "  mesh: {file: panel.bdf}"   # its own PSHELL and MAT1: the material of the other modes
+  elif [ "$mesh_mode" = file ]; then
     echo "  mesh: {file: panel.msh}"
     echo "  regions:"
     echo "    panel: {shell: {material: cfrp_iso, thickness: 0.002, element: dst}}"
@@ -134,7 +144,9 @@ for dof in "${sizes[@]}"; do
     feprep_yaml "$dof" "$red" "$radius" > "$d/panel.yaml"
     # Both meshes (the S8R deck, fe-prep's .msh) written before either timed run.
     cb_arg=(); [ "$red" = free ] || cb_arg=(--craig-bampton "$radius")
-    msh_arg=(); [ "$mesh_mode" = file ] && msh_arg=(--msh "$d/panel.msh")
+    msh_arg=()
+    [ "$mesh_mode" = file ] && msh_arg=(--msh "$d/panel.msh")
+    [ "$mesh_mode" = nastran ] && msh_arg=(--bdf "$d/panel.bdf")
     cdof=$($py "$here/calculix_panel.py" "$nx" "$ny" "$d/c.inp" "${cb_arg[@]}" "${msh_arg[@]}" | awk 'NR == 1 {print $(NF-2)}')
     l0=$(load)
     read -r f_wall f_cpu f_mem <<< "$(timed "$d" "$d/fe.txt" "$big_fe" "$feprep" -q panel.yaml -o panel.h5)"
@@ -146,7 +158,7 @@ for dof in "${sizes[@]}"; do
     else
       ff=$($py -c "import h5py, numpy as np; l = np.sqrt(h5py.File('$d/panel.h5')['reduction/kept_eigenvalues'][:]) / (2 * np.pi); print(f'{l[0]:.4f}, {l[-1]:.3f}')")
     fi
-    rm -f "$d/panel.h5" "$d/panel.xdmf" "$d/panel.msh"
+    rm -f "$d/panel.h5" "$d/panel.xdmf" "$d/panel.msh" "$d/panel.bdf"
     if [ "$dof" -le "$ccx_max" ]; then
       read -r c_wall c_cpu c_mem <<< "$(timed "$d" "$d/c.txt" "$big_ccx" "${ccx_env[@]}" ccx -i c)"
       # Eigenvalue table of the .dat: the first step's modes (free: skip the 6 rigid ones).
