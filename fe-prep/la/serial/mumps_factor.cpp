@@ -19,8 +19,13 @@ namespace {
 // Fortran communicator value that sequential MUMPS takes for "no MPI".
 constexpr int kUseCommWorld = -987654;
 
-// Below this size AMD's factor is smaller and faster than nested dissection's.
-constexpr long kNestedDissectionDofs = 30000;
+// MUMPS factorises only the held patches' saddle point here (CHOLMOD the
+// rest). Measured on the benchmark panel's Craig-Bampton K (8 pinned patches;
+// docs/fe-prep.md, "Two programs"): QAMD (ICNTL(7) = 6) the fastest at 3e4
+// and 1e5 DOF (2.42 / 8.55 s against SCOTCH's 2.87 / 10.78 s, PORD's 2.60 /
+// 9.78 s), within noise of AMD and PORD at 1e4; above kPordDofs, unmeasured
+// here, PORD, the PETSc path's ordering at 1e6.
+constexpr long kPordDofs = 200000;
 
 // MUMPS's INFOG(1) values that mean memory (its guide, "Error diagnostics"):
 // -7 the analysis's integer work space could not be allocated (met under
@@ -55,10 +60,9 @@ MumpsFactor::MumpsFactor(const SparseMatrix& K, const SparseMatrix* M, double si
   m_->id.icntl[2] = -1;
   m_->id.icntl[3] = 0;
   // ICNTL(7): the fill-reducing ordering (the Debian seq build has AMD, AMF,
-  // QAMD, PORD and SCOTCH, no METIS). Measured in docs/fe-prep.md, "Two
-  // programs": AMD below kNestedDissectionDofs, SCOTCH's nested dissection
-  // above. FLEXCOMP_MUMPS_ORDERING=<ICNTL(7)> overrides it (measurements).
-  m_->id.icntl[6] = n_ < kNestedDissectionDofs ? 0 : 3;
+  // QAMD, PORD and SCOTCH, no METIS): QAMD below kPordDofs, PORD above.
+  // FLEXCOMP_MUMPS_ORDERING=<ICNTL(7)> overrides it (measurements).
+  m_->id.icntl[6] = n_ < kPordDofs ? 6 : 4;
   if (const char* o = std::getenv("FLEXCOMP_MUMPS_ORDERING")) m_->id.icntl[6] = std::atoi(o);
   // A = K - sigma M in coordinates (1-based), K's and M's upper triangles
   // merged column by column. Released as soon as MUMPS holds its own copy:
