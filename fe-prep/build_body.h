@@ -1,8 +1,9 @@
 #pragma once
-// The whole fe-prep pipeline on one body: mesh (gmsh, rank 0), reference
-// conditions, parallel assembly (PETSc), modes (SLEPc), interface shapes and
-// exact rigid properties. Every rank returns the same FlexBody; rank 0 writes.
-
+// The whole fe-prep pipeline on one body: mesh (gmsh on rank 0, or a deck,
+// a beam, imported matrices), reference conditions, assembly, modes,
+// interface shapes and exact rigid properties, over the backend's linear
+// algebra (la_backend.h: PETSc ranks, or one serial process). Every rank
+// returns the same FlexBody; rank 0 writes.
 #include <string>
 #include <vector>
 

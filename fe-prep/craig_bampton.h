@@ -14,7 +14,6 @@
 // meaning (contracts.md, fe-prep, reduction: craig_bampton).
 // Two stages, so that the free body's matrices are assembled only after the
 // constraint modes' factorisation is freed: constraintModes, then craigBampton.
-
 #include <Eigen/Dense>
 #include <functional>
 #include <map>

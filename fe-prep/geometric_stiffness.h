@@ -19,7 +19,6 @@
 // geometric_stiffening.h). This is SIMPACK's first-order SID term (Wallrapp,
 // Nonlinear Dyn. 5 (1994) 451: the geometric stiffness of unit inertia loads)
 // and MBDyn's modal stress-stiffening per load case.
-
 #include <Eigen/Dense>
 #include <array>
 #include <string>

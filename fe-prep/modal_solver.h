@@ -1,13 +1,15 @@
 #pragma once
-// The generalized eigenproblem K x = lambda M x with SLEPc: Krylov-Schur with
-// shift-and-invert, the shifted matrix factorised by MUMPS (Cholesky). The
-// rigid-body motions the reference leaves free are found among the lowest
-// modes and removed: they are identified by their projection on the
-// geometric rigid-mode space, not by a threshold on lambda.
-
+// The generalized eigenproblem K x = lambda M x, shift-and-invert: in the
+// PETSc program SLEPc's Krylov-Schur with the shifted matrix factorised by
+// MUMPS (modal_solver.cpp), in the serial one ARPACK's Lanczos with CHOLMOD
+// or MUMPS (fe-prep/la/serial/arpack_modes.cpp). The rigid-body motions the
+// reference leaves free are found among the lowest modes and removed: they
+// are identified by their projection on the geometric rigid-mode space, not
+// by a threshold on lambda.
 #include <Eigen/Dense>
 #include <functional>
 #include <stdexcept>
+
 #include "la_backend.h"
 
 namespace fc::feprep {

@@ -12,7 +12,6 @@
 // p_jk = s_jk^2 / (lambda_j delta_k); the truncation error of the first n modes
 // e_k(n) = 1 - sum_{j<n} p_jk, the share of the static deflection they miss
 // (0 <= e <= 1 as the modes are K-orthogonal and complete).
-
 #include <Eigen/Dense>
 #include <array>
 #include <vector>

@@ -4,7 +4,6 @@
 // mass, centre, inertia, first frequencies next to the source code's own), the
 // nodal masses fitted to the imported M, and the checks of interfaces on solid
 // nodes. Kept apart so that build_body.cpp only branches into them.
-
 #include <string>
 
 #include "fe-prep/body_inertia.h"
