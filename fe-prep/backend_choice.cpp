@@ -5,7 +5,9 @@
 namespace fc::feprep {
 
 long launcherRanks() {
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS"}) {
+  // mpirun (OpenMPI), MPICH's Hydra and PMI-2 launchers, MPICH's local count,
+  // and srun's step (srun --mpi=pmix sets no PMI_SIZE).
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS", "SLURM_STEP_NUM_TASKS"}) {
     const char* s = std::getenv(v);
     if (s && std::atol(s) > 1) return std::atol(s);
   }

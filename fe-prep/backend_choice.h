@@ -16,7 +16,8 @@ namespace fc::feprep {
 constexpr const char* kHandOverVariable = "FLEXCOMP_FEPREP_HANDOVER";
 
 // The number of ranks the launcher started (mpirun/mpiexec/srun's environment:
-// OMPI_COMM_WORLD_SIZE, PMI_SIZE, MPI_LOCALNRANKS), 1 when none says.
+// OMPI_COMM_WORLD_SIZE, PMI_SIZE, MPI_LOCALNRANKS, SLURM_STEP_NUM_TASKS), 1
+// when none says more.
 long launcherRanks();
 
 // Why fe-prep-mpi must build this run, or "" when the serial program does.

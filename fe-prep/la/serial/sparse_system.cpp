@@ -17,7 +17,7 @@
 namespace fc::feprep {
 inline namespace serial {
 
-const char* backendName() { return "serial (Eigen, MUMPS, ARPACK; program fe-prep)"; }
+const char* backendName() { return "serial (Eigen, CHOLMOD or MUMPS, ARPACK; program fe-prep)"; }
 
 Eigen::VectorXd multiply(SystemMatrix A, const Eigen::VectorXd& v) {
   Eigen::VectorXd y(v.size());
