@@ -170,11 +170,7 @@ void addNodalMassBlocks(const DofMap& map, long e, const ElementResult& er, Mat 
   RowMajor buf;
   const long a = static_cast<long>(er.nodes.size());
   for (long i = 0; i < a; ++i) {
-    for (long j = 0; j < a; ++j)
-      if (j != i && er.M.block(6 * i, 6 * j, 6, 6).cwiseAbs().maxCoeff() > 0.0)
-        throw std::logic_error("assembly: a nodal mass pattern was asked but element " + std::to_string(e) +
-                               "'s mass couples two nodes");
-    const Eigen::MatrixXd D = er.M.block(6 * i, 6 * i, 6, 6);
+    const Eigen::MatrixXd D = nodalMassBlock(er, e, i);
     if (D.cwiseAbs().maxCoeff() == 0.0) continue;
     reduceElement(map, {er.nodes[static_cast<std::size_t>(i)]}, D, Mr, idx);
     if (idx.empty()) continue;

@@ -2,6 +2,7 @@
 
 #include <slepceps.h>
 
+#include "fe-prep/mode_selection.h"
 #include "fe-prep/petsc_handles.h"
 
 #include <algorithm>
@@ -332,42 +333,29 @@ ModalResult solveModes(MPI_Comm comm, Mat K, Mat M, const Eigen::MatrixXd& rigid
 
     // The r modes with the largest rigid share are the rigid ones (deflated:
     // none of the solved ones, whose shares stay at rounding).
-    std::vector<std::size_t> order(pairs.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return pairs[a].rigid_share > pairs[b].rigid_share; });
-    std::vector<Pair> kept, removed;
-    for (std::size_t k = 0; k < order.size(); ++k)
-      (static_cast<long>(k) < r_solved ? removed : kept).push_back(std::move(pairs[order[k]]));
-    auto by_lambda = [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; };
-    std::sort(kept.begin(), kept.end(), by_lambda);
-    std::sort(removed.begin(), removed.end(), by_lambda);
-
-    const bool exhausted = nev >= massive;
-    if (lambda_max > 0 && !exhausted && (kept.empty() || kept.back().lambda <= lambda_max)) {
+    std::vector<SolvedPair> solved;
+    for (const Pair& p : pairs) solved.push_back({p.lambda, p.rigid_share});
+    const std::optional<ModeSelection> chosen = selectModes(solved, r_solved, lambda_max, nev >= massive, wanted);
+    if (!chosen) {
       wanted = std::min<long>(2 * wanted, elastic_available);
       continue;
     }
-    long keep = static_cast<long>(kept.size());
-    if (lambda_max > 0) {
-      keep = 0;
-      while (keep < static_cast<long>(kept.size()) && kept[static_cast<std::size_t>(keep)].lambda <= lambda_max) ++keep;
-    } else {
-      keep = std::min<long>(keep, wanted);
-    }
+    const long keep = static_cast<long>(chosen->kept.size());
     result.eigenvalues.resize(keep);
     result.vectors.resize(N, keep);
     for (long k = 0; k < keep; ++k) {
-      result.eigenvalues(k) = kept[static_cast<std::size_t>(k)].lambda;
-      result.vectors.col(k) = kept[static_cast<std::size_t>(k)].x;
-      result.rigid_projection_max = std::max(result.rigid_projection_max, kept[static_cast<std::size_t>(k)].rigid_share);
+      const Pair& p = pairs[chosen->kept[static_cast<std::size_t>(k)]];
+      result.eigenvalues(k) = p.lambda;
+      result.vectors.col(k) = p.x;
+      result.rigid_projection_max = std::max(result.rigid_projection_max, p.rigid_share);
     }
     result.deflated = deflate;
     if (deflate) result.rigid_projection_min = 1.0;  // the rigid space itself
     else result.rigid_eigenvalues.resize(r);
     for (long k = 0; k < r_solved; ++k) {
-      result.rigid_eigenvalues(k) = removed[static_cast<std::size_t>(k)].lambda;
-      result.rigid_projection_min = std::min(result.rigid_projection_min, removed[static_cast<std::size_t>(k)].rigid_share);
+      const Pair& p = pairs[chosen->removed[static_cast<std::size_t>(k)]];
+      result.rigid_eigenvalues(k) = p.lambda;
+      result.rigid_projection_min = std::min(result.rigid_projection_min, p.rigid_share);
     }
     if (request.keep_factor && sigma == 0.0) {
       // The spectral transformation factorised K - 0 M = K: one more

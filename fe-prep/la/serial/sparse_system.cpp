@@ -157,11 +157,7 @@ void assemble(Comm, const Mesh& mesh, const DofMap& map, long elements, const El
     if (nodal_mass) {
       const long a = static_cast<long>(er.nodes.size());
       for (long i = 0; i < a; ++i) {
-        for (long j = 0; j < a; ++j)
-          if (j != i && er.M.block(6 * i, 6 * j, 6, 6).cwiseAbs().maxCoeff() > 0.0)
-            throw std::logic_error("assembly: a nodal mass pattern was asked but element " + std::to_string(e) +
-                                   "'s mass couples two nodes");
-        const Eigen::MatrixXd D = er.M.block(6 * i, 6 * i, 6, 6);
+        const Eigen::MatrixXd D = nodalMassBlock(er, e, i);
         if (D.cwiseAbs().maxCoeff() == 0.0) continue;
         std::vector<long> one_idx;
         reduceElement(map, {er.nodes[static_cast<std::size_t>(i)]}, D, Mr, one_idx);
