@@ -47,23 +47,6 @@ Partition partition(MPI_Comm comm, const Mesh& mesh, const DofMap& map) {
   return p;
 }
 
-// Per node, the nodes whose reduced DOF express it (sorted, unique): itself,
-// or for a node expressed through other nodes' reduced DOF (a rigid slave
-// through its master, a held distributing patch through the patch) those
-// nodes instead.
-std::vector<std::vector<long>> nodeSources(const Partition& p, const DofMap& map) {
-  std::vector<long> owner_node(static_cast<std::size_t>(map.reduced));
-  for (long i = 0; i < p.n; ++i)
-    for (int k = 0; k < map.count(i); ++k) owner_node[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] + k)] = i;
-  std::vector<std::vector<long>> sources(static_cast<std::size_t>(p.n));
-  for (long i = 0; i < p.n; ++i) {
-    auto& s = sources[static_cast<std::size_t>(i)];
-    for (long g : map.idx[static_cast<std::size_t>(i)]) s.push_back(owner_node[static_cast<std::size_t>(g)]);
-    std::sort(s.begin(), s.end());
-    s.erase(std::unique(s.begin(), s.end()), s.end());
-  }
-  return sources;
-}
 
 // Entries per local row in this rank's diagonal block (d) and off it (o): PETSc's preallocation.
 struct RowCounts {
@@ -92,11 +75,7 @@ RowCounts stiffnessPattern(const Partition& p, const Mesh& mesh, const DofMap& m
   std::vector<std::vector<long>> adj(static_cast<std::size_t>(p.n));
   std::vector<long> src;
   auto link = [&](const long* nodes, int count) {
-    src.clear();
-    for (int i = 0; i < count; ++i) {
-      const auto& s = sources[static_cast<std::size_t>(nodes[i])];
-      src.insert(src.end(), s.begin(), s.end());
-    }
+    elementSources(sources, nodes, count, src);
     for (long a : src)
       if (p.ownsNode(a)) adj[static_cast<std::size_t>(a)].insert(adj[static_cast<std::size_t>(a)].end(), src.begin(), src.end());
   };
@@ -273,7 +252,7 @@ void assemble(MPI_Comm comm, const Mesh& mesh, const DofMap& map, long elements,
   std::vector<MultiplierRows> held;
   for (std::size_t k = 0; k < map.held.size(); ++k) held.push_back(multiplierRows(map, k));
   {
-    std::vector<std::vector<long>> sources = nodeSources(p, map);
+    std::vector<std::vector<long>> sources = nodeSources(map, p.n);
     RowCounts stiffness = stiffnessPattern(p, mesh, map, sources);
     RowCounts mass = nodal_mass ? nodalMassPattern(p, map, sources) : RowCounts{};
     std::vector<std::vector<long>>().swap(sources);

@@ -394,4 +394,27 @@ void reduceElement(const DofMap& map, const std::vector<long>& nodes, const Eige
   Kr = Tb.transpose() * Ke * Tb;
 }
 
+std::vector<std::vector<long>> nodeSources(const DofMap& map, long n_nodes) {
+  std::vector<long> owner_node(static_cast<std::size_t>(map.reduced), -1);
+  for (long i = 0; i < n_nodes; ++i)
+    for (int k = 0; k < map.count(i); ++k) owner_node[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] + k)] = i;
+  std::vector<std::vector<long>> sources(static_cast<std::size_t>(n_nodes));
+  for (long i = 0; i < n_nodes; ++i) {
+    auto& s = sources[static_cast<std::size_t>(i)];
+    for (long g : map.idx[static_cast<std::size_t>(i)]) s.push_back(owner_node[static_cast<std::size_t>(g)]);
+    std::sort(s.begin(), s.end());
+    s.erase(std::unique(s.begin(), s.end()), s.end());
+  }
+  return sources;
+}
+
+void elementSources(const std::vector<std::vector<long>>& sources, const long* nodes, int count,
+                    std::vector<long>& out) {
+  out.clear();
+  for (int i = 0; i < count; ++i) {
+    const auto& s = sources[static_cast<std::size_t>(nodes[i])];
+    out.insert(out.end(), s.begin(), s.end());
+  }
+}
+
 }  // namespace fc::feprep

@@ -109,6 +109,17 @@ struct MultiplierRows {
 };
 MultiplierRows multiplierRows(const DofMap& map, std::size_t k);
 
+// Per node, the nodes whose reduced DOF express it (sorted, unique): itself,
+// or for a node expressed through other nodes' reduced DOF (a rigid slave
+// through its master, a held distributing patch through the patch) those
+// nodes instead: the node graph both assemblies build K's pattern on.
+std::vector<std::vector<long>> nodeSources(const DofMap& map, long n_nodes);
+
+// The sources of an element's `count` nodes, one after the other, into `out`
+// (cleared first): the nodes the element's matrices couple.
+void elementSources(const std::vector<std::vector<long>>& sources, const long* nodes, int count,
+                    std::vector<long>& out);
+
 // The rigid motions u = t + omega x X, theta = omega (small rotations about the
 // body origin) that satisfy every condition: (n_nodes * 6) x r, r <= 6.
 // Free-free: r = 6; a panel pinned at two points: r = 1 (turning about their line).

@@ -31,22 +31,6 @@ namespace {
 
 using Adjacency = std::vector<std::vector<long>>;
 
-// Per node, the nodes whose reduced DOF express it (sorted, unique): itself,
-// or a rigid slave's master, a held patch's nodes (as the PETSc assembly's).
-Adjacency nodeSources(long n, const DofMap& map) {
-  std::vector<long> owner(static_cast<std::size_t>(map.reduced), -1);
-  for (long i = 0; i < n; ++i)
-    for (int k = 0; k < map.count(i); ++k) owner[static_cast<std::size_t>(map.offset[static_cast<std::size_t>(i)] + k)] = i;
-  Adjacency sources(static_cast<std::size_t>(n));
-  for (long i = 0; i < n; ++i) {
-    auto& s = sources[static_cast<std::size_t>(i)];
-    for (long g : map.idx[static_cast<std::size_t>(i)]) s.push_back(owner[static_cast<std::size_t>(g)]);
-    std::sort(s.begin(), s.end());
-    s.erase(std::unique(s.begin(), s.end()), s.end());
-  }
-  return sources;
-}
-
 // Links every node of `src` with every other (a clique in the node graph).
 void link(Adjacency& adj, const std::vector<long>& src) {
   for (long a : src) adj[static_cast<std::size_t>(a)].insert(adj[static_cast<std::size_t>(a)].end(), src.begin(), src.end());
@@ -120,15 +104,11 @@ void assemble(Comm, const Mesh& mesh, const DofMap& map, long elements, const El
   std::vector<MultiplierRows> held;
   for (std::size_t k = 0; k < map.held.size(); ++k) held.push_back(multiplierRows(map, k));
   {
-    const Adjacency sources = nodeSources(n, map);
+    const Adjacency sources = nodeSources(map, n);
     Adjacency adj(static_cast<std::size_t>(n)), adj_m(nodal_mass ? static_cast<std::size_t>(n) : 0);
     std::vector<long> src;
     auto element = [&](const long* nodes, int count) {
-      src.clear();
-      for (int i = 0; i < count; ++i) {
-        const auto& s = sources[static_cast<std::size_t>(nodes[i])];
-        src.insert(src.end(), s.begin(), s.end());
-      }
+      elementSources(sources, nodes, count, src);
       link(adj, src);
     };
     for (const auto& t : mesh.triangles) element(t.data(), 3);
