@@ -4,9 +4,8 @@
 #include <iostream>
 
 #include "common/termination.h"
-#include "common/h5io.h"
+#include "common/h5error.h"
 #include "common/input.h"
-#include "common/inspect.h"
 #include "common/memory.h"
 
 namespace fc {
@@ -35,12 +34,13 @@ int guardedMain(const std::string& tool, const std::function<int()>& body) {
 
 namespace fc {
 
-void addInspectOption(CLI::App& app, const std::string& tool) {
+void addInspectOption(CLI::App& app, const std::string& tool,
+                      std::function<std::string(const std::string&)> inspect) {
   app.add_option_function<std::string>(
          "--inspect",
-         [tool](const std::string& path) {
+         [tool, inspect](const std::string& path) {
            const int rc = guardedMain(tool, [&]() {
-             std::cout << inspectFile(path);
+             std::cout << inspect(path);
              return 0;
            });
            if (rc != 0) throw CLI::RuntimeError(rc);

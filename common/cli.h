@@ -13,8 +13,11 @@ namespace fc {
 int guardedMain(const std::string& tool, const std::function<int()>& body);
 
 // `--inspect FILE`: prints what a flexcomp HDF5 file holds (format, provenance,
-// summary, datasets) and exits, whatever else the command line says.
-void addInspectOption(CLI::App& app, const std::string& tool);
+// summary, datasets) and exits, whatever else the command line says. INSPECT is
+// the description (fc::inspectFile, common/inspect.h; fe-prep's serial program
+// reaches it through its HDF5 module): passed in, so that this file links no HDF5.
+void addInspectOption(CLI::App& app, const std::string& tool,
+                      std::function<std::string(const std::string&)> inspect);
 
 // Where the input reference (every YAML key with meaning, unit and default) is:
 // P/share/doc/flexcomp/input-reference.md beside an installed tool (P/bin/TOOL),

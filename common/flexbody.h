@@ -154,6 +154,10 @@ struct InertiaInvariants {
   InertiaInvariants truncated(int n) const;
 };
 
+// Throws std::invalid_argument naming WHERE and the body when its arrays disagree
+// in size (nodes, nodal masses, shapes, interfaces, elements, invariants if given).
+void checkFlexBodySizes(const FlexBody& body, const InertiaInvariants* invariants, const std::string& where);
+
 // Invariants of `body` from its lumped nodal masses and its first n_modes modes
 // (-1: all). Throws std::invalid_argument on inconsistent sizes.
 InertiaInvariants computeInertiaInvariants(const FlexBody& body, int n_modes = -1);

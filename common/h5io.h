@@ -14,14 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "common/h5error.h"
 #include "common/termination.h"
 
 namespace fc {
-
-class H5Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 class H5File {
  public:

@@ -5,9 +5,10 @@
 
 #include "common/files.h"
 #include "common/flexbody.h"
-#include "common/h5io.h"
+#include "common/h5error.h"
 #include "common/materials.h"
 #include "common/units.h"
+#include "fe-prep/io/file_io.h"
 #include "fe-prep/mesh_files/nastran.h"
 
 namespace fc::feprep {
@@ -137,17 +138,16 @@ void parseBeamSection(const InputNode& sec, const MaterialLibrary& materials, Bo
     sec.allowKeys({"file"});
     const std::string path = resolveRelativeTo(sec.file(), sec["file"].asString());
     try {
-      H5File f(path, H5File::Mode::Read);
-      f.checkFormat("section", 1);
-      Ks = f.readMatrix("/stiffness/timoshenko", 6, 6);
-      Ms = f.readMatrix("/mass/matrix", 6, 6);
+      SectionFile f = fileIO().read_section(path, basis != nullptr);
+      Ks = f.stiffness;
+      Ms = f.mass;
       // A beam needs a positive-definite section stiffness and a positive mass.
       Eigen::LLT<Matrix6d> llt(0.5 * (Ks + Ks.transpose()));
       if (llt.info() != Eigen::Success)
         throw H5Error(path + ": /stiffness/timoshenko is not positive definite");
       if (!(Ms(0, 0) > 0)) throw H5Error(path + ": /mass/matrix has no positive mass per length");
       // The section's stresses per unit resultant (its /recovery/), for ply stresses at stations.
-      if (basis) *basis = readSectionStressBasis(path);
+      if (basis) *basis = std::move(f.stress_basis);
     } catch (const std::bad_alloc&) {
       throw;  // out of memory is no input error
     } catch (const std::exception& e) {

@@ -18,6 +18,7 @@
 #include "common/version.h"
 #include "fe-prep/body_spec.h"
 #include "fe-prep/build_body.h"
+#include "fe-prep/io/file_io.h"
 #include "fe-prep/backend_choice.h"
 #include "fe-prep/xdmf_writer.h"
 
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
                  "(one process: MUMPS, ARPACK; no gmsh meshing), petsc (fe-prep-mpi: PETSc/SLEPc, MPI, gmsh)")
       ->check(CLI::IsMember({"auto", "serial", "petsc"}));
   app.set_version_flag("--version", std::string("fe-prep ") + fc::version());
-  fc::addInspectOption(app, "fe-prep");
+  fc::addInspectOption(app, "fe-prep", [](const std::string& path) { return fc::feprep::fileIO().inspect(path); });
   fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
 
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
     // Refuse a bad output path before any computing, not after.
     fc::checkOutputIsNotAnInput(output, {input});
     if (rank == 0) fc::checkOutputWritable(output);
+    fc::feprep::requireFileIO();
     // Each stage is named for an out-of-memory message (common/memory.h);
     // buildFlexBody's progress bars name its own (meshing, assembly, eigen-solve).
     std::optional<fc::StageScope> stage(std::in_place, "reading the input");
@@ -112,7 +114,9 @@ int main(int argc, char** argv) {
       // The ParaView view is staged first and renamed after the .h5: a full
       // disk leaves the previous pair, never a new .h5 beside an old view.
       fc::StagedFile view(fc::feprep::xdmfPathFor(output), fc::feprep::bodyXdmf(output, r.body));
-      fc::writeFlexBody(output, r.body, fc::computeInertiaInvariants(r.body), prov);
+      // The serial program loads HDF5 only now, with the factorisations freed.
+      fc::feprep::loadFileIOForWrite();
+      fc::feprep::fileIO().write_body(output, r.body, fc::computeInertiaInvariants(r.body), prov);
       view.commit();
       printSummary(spec, r, output);
     }

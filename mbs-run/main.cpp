@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/cli.h"
+#include "common/inspect.h"
 #include "common/files.h"
 #include "common/memory.h"
 #include "common/termination.h"
@@ -255,7 +256,7 @@ int main(int argc, char** argv) {
                "exit 0 when the run ends with status 'inaccurate' (energy balance or constraint drift beyond what "
                "its tolerances allow; the results are written either way)");
   app.set_version_flag("--version", std::string("mbs-run ") + fc::version());
-  fc::addInspectOption(app, "mbs-run");
+  fc::addInspectOption(app, "mbs-run", fc::inspectFile);
   fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
 

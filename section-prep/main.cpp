@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "common/inspect.h"
 #include "common/files.h"
 #include "common/input.h"
 #include "common/memory.h"
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
       ->expected(6);
   app.add_flag("-q,--quiet", quiet, "no summary on stdout, no progress on stderr");
   app.set_version_flag("--version", std::string("section-prep ") + fc::version());
-  fc::addInspectOption(app, "section-prep");
+  fc::addInspectOption(app, "section-prep", fc::inspectFile);
   fc::addInputReferenceFooter(app);
   CLI11_PARSE(app, argc, argv);
   // A signal removes the temporary being written and exits: no partial output.

@@ -171,7 +171,7 @@ TEST(Inspect, CommandLineOptionPrintsAndExits) {
   CLI::App app{"t"};
   std::string input;
   app.add_option("input", input)->required();  // --inspect works without the required input
-  fc::addInspectOption(app, "tool");
+  fc::addInspectOption(app, "tool", fc::inspectFile);
   const std::string arg0 = "tool", arg1 = "--inspect", arg2 = path;
   const char* argv[] = {arg0.c_str(), arg1.c_str(), arg2.c_str()};
   testing::internal::CaptureStdout();
@@ -179,7 +179,7 @@ TEST(Inspect, CommandLineOptionPrintsAndExits) {
   const std::string out = testing::internal::GetCapturedStdout();
   EXPECT_NE(out.find("11 outputs, t = 0 .. 1 s, status: completed"), std::string::npos) << out;
   CLI::App app2{"t"};
-  fc::addInspectOption(app2, "tool");
+  fc::addInspectOption(app2, "tool", fc::inspectFile);
   const std::string missing = tempPath("missing_inspect.h5");
   const char* argv2[] = {arg0.c_str(), arg1.c_str(), missing.c_str()};
   testing::internal::CaptureStderr();

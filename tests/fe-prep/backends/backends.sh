@@ -8,6 +8,11 @@
 #    mpirun -n 2 (the same body again), a gmsh-meshed panel, a body the serial
 #    path does not build (backend_choice.cpp's list), --backend petsc; and
 #    --backend serial refuses a gmsh body with one message and exit 1.
+# 4. HDF5 is a module of the serial program: its ELF needs no HDF5, `--version`
+#    loads none, a body run loads it through libflexcomp_feprep_h5.so (for the
+#    write), the module's calls into flexcomp_base bind to the program's copy
+#    (one table of temporaries for the signal handler), and a program without
+#    its module stops before any work, naming where it looked.
 # Usage: backends.sh BUILD_DIR
 set -uo pipefail
 B=$1
@@ -104,6 +109,28 @@ for kb in $(seq 20000 3000 200000); do
 done
 [ $clean -gt 0 ] || bad "no out-of-memory stop of the serial program was seen below its first success ($kb KB)"
 echo "out of memory: $clean clean stops below ulimit -v $kb KB"
+# 4. HDF5 as a module (docs/architecture.md, "fe-prep's two programs").
+echo "$needed" | grep -qi hdf5 && bad "fe-prep's ELF needs HDF5: $needed"
+echo "$closure" | grep -qi libhdf5 && bad "fe-prep's ldd closure holds HDF5"
+[ -f "$B/fe-prep/libflexcomp_feprep_h5.so" ] || bad "the HDF5 module is not built beside fe-prep"
+LD_DEBUG=files LD_DEBUG_OUTPUT="$W/ldv" "$FP" --version > /dev/null 2>&1
+grep -qE "file=(libhdf5|.*libflexcomp_feprep_h5)" "$W"/ldv.* && bad "fe-prep --version loads HDF5 or its module"
+LD_DEBUG=files,bindings LD_DEBUG_OUTPUT="$W/ld" "$FP" "$HERE/deck_cb_patches.yaml" -o "$W/lazy.h5" -q > "$W/lazy.log" 2>&1 ||
+  bad "deck_cb_patches with LD_DEBUG: $(tail -3 "$W/lazy.log")"
+grep -qE "file=libhdf5.*needed by .*libflexcomp_feprep_h5.so" "$W"/ld.* ||
+  bad "HDF5 was not loaded through the module: $(grep 'file=libhdf5' "$W"/ld.* | head -2)"
+grep -qE "binding file .*libflexcomp_feprep_h5.so \[0\] to .*/fe-prep \[0\]: normal symbol .*TemporaryRegistration" "$W"/ld.* ||
+  bad "the module's temporary registration does not bind to fe-prep's: $(grep 'TemporaryRegistration' "$W"/ld.* | head -2)"
+"$FP" --inspect "$W/lazy.h5" > "$W/inspect.txt" 2>&1 && grep -q "flexbody/1" "$W/inspect.txt" ||
+  bad "fe-prep --inspect through the module: $(head -3 "$W/inspect.txt")"
+mkdir -p "$W/alone"
+cp "$FP" "$W/alone/fe-prep"
+"$W/alone/fe-prep" "$HERE/deck_free.yaml" -o "$W/alone/x.h5" > "$W/alone.log" 2>&1
+rc=$?
+[ $rc = 1 ] && grep -q "fe-prep: error: fe-prep's HDF5 module libflexcomp_feprep_h5.so is in neither $W/alone/ nor" "$W/alone.log" &&
+  ! grep -q "eigen" "$W/alone.log" || bad "fe-prep without its module: exit $rc, $(tail -c 300 "$W/alone.log")"
+[ -e "$W/alone/x.h5" ] && bad "fe-prep without its module left an output"
+echo "HDF5: loaded by the module at the write; $(grep -c 'binding file .*libflexcomp_feprep_h5.so .* to .*/fe-prep ' "$W"/ld.*) of the module's bindings reach the program"
 if [ $fails -gt 0 ]; then
   echo "$fails failure(s)"
   exit 1
