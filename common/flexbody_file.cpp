@@ -265,10 +265,10 @@ void writeFlexBody(const std::string& path, const FlexBody& body, const InertiaI
 
   writeArray(f, "/modes/eigenvalues", {um}, body.eigenvalues.data());
   writeArray(f, "/modes/frequencies_hz", {um}, body.frequencies_hz.data());
-  // Column-major (6n, nm) storage is exactly C-order (nm, n, 6).
-  Eigen::MatrixXd shapes = body.shapes;
-  if (shapes.rows() == 0) shapes.resize(6 * n, 0);
-  writeArray(f, "/modes/shapes", {um, un, 6}, shapes.data());
+  // Column-major (6n, nm) storage is exactly C-order (nm, n, 6): written from
+  // the body's own array (the largest of the file), never a copy.
+  const Eigen::MatrixXd no_modes(6 * n, 0);
+  writeArray(f, "/modes/shapes", {um, un, 6}, (body.shapes.rows() == 0 ? no_modes : body.shapes).data());
   // The per-mode fields of BODY.xdmf (fe-prep/xdmf_writer.cpp): views, not copies.
   if (n > 0) {
     writeColumnView(f, "/view/nodal_mass", "/mass/nodal", {un, 4}, 0, 0, 1);
