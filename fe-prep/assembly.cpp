@@ -287,4 +287,8 @@ void addNodalTranslationalMass(MPI_Comm comm, const Mesh& mesh, const DofMap& ma
   check(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+// A distributed matrix keeps no leading block to hand over cheaply
+// (MatCreateSubMatrix would redistribute it): the driver assembles again.
+bool freeBlockOf(const AssembledSystem&, const DofMap&, const DofMap&, AssembledSystem&) { return false; }
+
 }  // namespace fc::feprep

@@ -31,6 +31,15 @@ std::vector<long> nodeOwnership(long n_nodes, int ranks);
 void assemble(Comm comm, const Mesh& mesh, const DofMap& map, long elements, const ElementKernel& kernel,
               AssembledSystem& out, const std::function<void(double)>& progress = {}, bool nodal_mass = false);
 
+// The free body's K and M (FREE_MAP: the couplings alone) taken from HELD,
+// assembled over HELD_MAP, instead of assembled again, where HELD_MAP's nodal
+// reduced DOF are FREE_MAP's (sameNodalDofs: a reference that holds
+// distributing patches by multipliers and nothing else): HELD's leading nodal
+// block, the same numbers in the same pattern as an assembly over FREE_MAP.
+// Returns false, OUT untouched, where it cannot: a condition eliminated DOF,
+// or the backend keeps no such block (the PETSc program assembles again).
+bool freeBlockOf(const AssembledSystem& held, const DofMap& held_map, const DofMap& free_map, AssembledSystem& out);
+
 // Adds dm_k to the three translational diagonal entries of every node this rank
 // owns (in reduced DOF through the node's T) and re-assembles M.
 void addNodalTranslationalMass(Comm comm, const Mesh& mesh, const DofMap& map, const Eigen::VectorXd& dm, SystemMatrix M);

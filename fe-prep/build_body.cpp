@@ -914,13 +914,17 @@ void craigBamptonStage(BuildState& s) {
   res.stages.back().factor_library = basis.factorisation.library;
   swr.start();
   res.constraint_modes = cb.n_boundary;
-  // The free body (its couplings only) for the reduced K and M, assembled
-  // after the constraint modes' factorisation is freed: the two never coexist.
+  // The free body (its couplings only) for the reduced K and M, after the
+  // constraint modes' factorisation is freed: the two never coexist. Where
+  // the reference held only distributing patches (by multipliers), the held
+  // system's nodal block is that body already; else it is assembled.
   DofMap free_map = buildDofMap(s.mesh, {}, s.couplings, {});
   if (s.imported) holdSolidRotations(free_map, s.imported->solid);
   AssembledSystem free_sys;
-  assemble(s.comm, s.assemblyMesh(), free_map, s.n_el, s.kernel, free_sys, {}, s.nodalMass());
-  if (s.mass_moved.size()) addNodalTranslationalMass(s.comm, s.mesh, free_map, s.mass_moved, free_sys.M);
+  if (!freeBlockOf(s.sys, s.map, free_map, free_sys)) {
+    assemble(s.comm, s.assemblyMesh(), free_map, s.n_el, s.kernel, free_sys, {}, s.nodalMass());
+    if (s.mass_moved.size()) addNodalTranslationalMass(s.comm, s.mesh, free_map, s.mass_moved, free_sys.M);
+  }
   CraigBamptonResult cbr =
       craigBampton(s.comm, std::move(basis), free_sys.K, free_sys.M, free_map, admissibleRigidModes(s.mesh, {}));
   res.stages.push_back({"reduction", swr.seconds(), swr.cpu(), peakRssMb(), 0.0});

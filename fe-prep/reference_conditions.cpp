@@ -417,4 +417,17 @@ void elementSources(const std::vector<std::vector<long>>& sources, const long* n
   }
 }
 
+bool sameNodalDofs(const DofMap& held, const DofMap& free) {
+  if (free.multipliers != 0 || free.reduced != held.firstMultiplier()) return false;
+  if (held.offset != free.offset || held.idx != free.idx || held.unconstrained != free.unconstrained) return false;
+  if (held.T.size() != free.T.size() || held.own.size() != free.own.size()) return false;
+  for (std::size_t k = 0; k < held.T.size(); ++k)
+    if (held.T[k].rows() != free.T[k].rows() || held.T[k].cols() != free.T[k].cols() || held.T[k] != free.T[k])
+      return false;
+  for (std::size_t k = 0; k < held.own.size(); ++k)
+    if (held.own[k].rows() != free.own[k].rows() || held.own[k].cols() != free.own[k].cols() || held.own[k] != free.own[k])
+      return false;
+  return true;
+}
+
 }  // namespace fc::feprep

@@ -92,6 +92,11 @@ struct DofMap {
   Eigen::VectorXd restrict(const Eigen::VectorXd& full_vector) const;
 };
 
+// Whether HELD's nodal reduced DOF (those before its multipliers) are exactly
+// FREE's, node by node (FREE has no multipliers): then a system assembled over
+// HELD holds FREE's in its leading block.
+bool sameNodalDofs(const DofMap& held, const DofMap& free);
+
 // Throws std::invalid_argument when a node is claimed twice in incompatible ways
 // (a rigid slave that also carries a condition, overlapping patches).
 DofMap buildDofMap(const Mesh& mesh, const std::vector<PointCondition>& conditions,

@@ -161,6 +161,19 @@ void assemble(Comm, const Mesh& mesh, const DofMap& map, long elements, const El
   if (progress) progress(1.0);
 }
 
+bool freeBlockOf(const AssembledSystem& held, const DofMap& held_map, const DofMap& free_map, AssembledSystem& out) {
+  if (!sameNodalDofs(held_map, free_map)) return false;
+  // Upper triangles: the first n columns hold rows < n only, multiplier
+  // columns come after; the nodal block is K's and M's leading corner.
+  const long n = free_map.reduced;
+  out.K = held.K.topLeftCorner(n, n);
+  out.M = held.M.topLeftCorner(n, n);
+  out.lumped = held.lumped;
+  out.first_row = 0;
+  out.local_rows = n;
+  return true;
+}
+
 void addNodalTranslationalMass(Comm, const Mesh& mesh, const DofMap& map, const Eigen::VectorXd& dm, SystemMatrix M) {
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(6, 6), Dr;
   std::vector<long> idx;
