@@ -3,6 +3,7 @@
 #include "common/flexbody.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -19,11 +20,6 @@ const std::array<const char*, kGeometricStiffnessCaseCount> kGeometricStiffnessC
 namespace {
 
 std::string str(long v) { return std::to_string(v); }
-
-// The node's 3 x nm translational (d0 = 0) or rotational (d0 = 3) shape rows.
-Eigen::MatrixXd nodeRows(const Eigen::MatrixXd& shapes, long k, int d0, int nm) {
-  return shapes.block(6 * k + d0, 0, 3, nm);
-}
 
 }  // namespace
 
@@ -124,25 +120,41 @@ InertiaInvariants computeInertiaInvariants(const FlexBody& body, int n_modes) {
   inv.rotary_modal = Eigen::MatrixXd::Zero(3, nm);
   inv.rotary_modal_mass = Eigen::MatrixXd::Zero(nm, nm);
 
-  for (long k = 0; k < body.nodeCount(); ++k) {
+  const long n = body.nodeCount();
+  for (long k = 0; k < n; ++k) {
     const double m = body.nodal_mass(k, 0);
     const Eigen::Vector3d s0 = body.nodes.row(k).transpose();
-    const Eigen::Matrix3d J = body.nodal_mass.row(k).tail<3>().asDiagonal();
     inv.mass += m;
     inv.first_moment += m * s0;
     inv.second_moment += m * s0 * s0.transpose();
-    inv.rotary_inertia += J;
-    if (nm == 0) continue;
-    const Eigen::MatrixXd Phi = nodeRows(body.shapes, k, 0, nm);
-    const Eigen::MatrixXd Theta = nodeRows(body.shapes, k, 3, nm);
-    inv.modal_first_moment += m * Phi;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        inv.modal_second_moment.row(3 * a + b) += m * s0(a) * Phi.row(b);
-        inv.modal_products[3 * a + b] += m * Phi.row(a).transpose() * Phi.row(b);
+    inv.rotary_inertia += body.nodal_mass.row(k).tail<3>().asDiagonal();
+  }
+  if (nm == 0) return inv;
+  // The modal sums over nodes as products of (nodes x modes) matrices, one per
+  // displacement component c (the shapes' rows 6k + c), taken a block of
+  // nodes at a time: S_ab = sum_k m_k Phi_ka^T Phi_kb = X_a^T diag(m) X_b.
+  // Blocks keep the copies small whatever the mesh; the products are GEMMs.
+  constexpr long kBlock = 256;
+  using Rows = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, 6>>;
+  std::array<Eigen::MatrixXd, 6> X, mX;
+  for (long k0 = 0; k0 < n; k0 += kBlock) {
+    const long b = std::min(kBlock, n - k0);
+    const Eigen::VectorXd m = body.nodal_mass.col(0).segment(k0, b);
+    for (int c = 0; c < 6; ++c) {
+      X[c] = Rows(body.shapes.data() + 6 * k0 + c, b, nm, Eigen::Stride<Eigen::Dynamic, 6>(body.shapes.rows(), 6));
+      // Translations weighted by the nodal mass, rotations by the rotary inertia about axis c - 3.
+      mX[c] = (c < 3 ? m : Eigen::VectorXd(body.nodal_mass.col(c - 2).segment(k0, b))).asDiagonal() * X[c];
+    }
+    for (int a = 0; a < 3; ++a) {
+      inv.modal_first_moment.row(a) += m.transpose() * X[a];
+      const Eigen::VectorXd ms = m.cwiseProduct(body.nodes.col(a).segment(k0, b));
+      for (int c = 0; c < 3; ++c) {
+        inv.modal_second_moment.row(3 * a + c) += ms.transpose() * X[c];
+        inv.modal_products[3 * a + c].noalias() += X[a].transpose() * mX[c];
       }
-    inv.rotary_modal += J * Theta;
-    inv.rotary_modal_mass += Theta.transpose() * J * Theta;
+      inv.rotary_modal.row(a) += body.nodal_mass.col(a + 1).segment(k0, b).transpose() * X[3 + a];
+      inv.rotary_modal_mass.noalias() += X[3 + a].transpose() * mX[3 + a];
+    }
   }
   return inv;
 }

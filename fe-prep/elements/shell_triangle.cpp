@@ -42,7 +42,10 @@ Matrix18d localStiffness(const TriangleGeometry& g, const LaminateStiffness& lam
     const Eigen::Matrix<double, 3, 9> Bb = plate.curvature(rule[q].L);
     for (int c = 0; c < 6; ++c) B.block<3, 1>(0, mem[c]) = Bm.col(c);
     for (int c = 0; c < 9; ++c) B.block<3, 1>(3, ben[c]) = Bb.col(c);
-    K += (rule[q].weight_fraction * g.area) * B.transpose() * ABD * B;
+    // Coefficient-wise (lazyProduct): at 18 x 6 x 18 Eigen's blocked GEMM costs
+    // more in set-up than in arithmetic (a fifth of the element's time).
+    const Eigen::Matrix<double, 6, 18> DB = ABD * B;
+    K.noalias() += (rule[q].weight_fraction * g.area) * B.transpose().lazyProduct(DB);
   }
   Eigen::Matrix<double, 9, 9> Ks = Eigen::Matrix<double, 9, 9>::Zero();
   for (int q = 0; q < 3; ++q) {
