@@ -204,6 +204,15 @@ std::string directoryOf(const std::string& path) {
   return path.substr(0, pos);
 }
 
+std::string programDirectory() {
+  char self[4096];
+  const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (len <= 0) return "./";
+  std::string dir(self, static_cast<std::size_t>(len));
+  dir.resize(dir.rfind('/') + 1);
+  return dir;
+}
+
 std::string resolveRelativeTo(const std::string& including_file, const std::string& path) {
   if (!path.empty() && path[0] == '/') return path;
   const std::string dir = directoryOf(including_file);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/files.h"
 #include "common/memory.h"
 #include "fe-prep/io/file_io.h"
 
@@ -16,16 +17,6 @@ namespace fc::feprep {
 namespace {
 
 constexpr const char* kModule = "libflexcomp_feprep_h5.so";
-
-// This program's directory, by /proc/self/exe.
-std::string programDirectory() {
-  char self[4096];
-  const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (len <= 0) return "./";
-  std::string dir(self, static_cast<std::size_t>(len));
-  dir.resize(dir.rfind('/') + 1);
-  return dir;
-}
 
 // The module's path: beside the program in the build tree (fe-prep/), in
 // PREFIX/LIBDIR/flexcomp installed (FLEXCOMP_BIN_TO_MODULE_DIR from

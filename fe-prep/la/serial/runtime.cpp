@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/files.h"
 #include "common/input.h"
 #include "fe-prep/backend_choice.h"
 #include "fe-prep/gmsh_mesh.h"
@@ -21,15 +22,8 @@ inline namespace serial {
 namespace {
 
 // fe-prep-mpi beside this program (the build tree's fe-prep/ and the
-// install's bin/ both hold the two), by /proc/self/exe.
-std::string petscProgram() {
-  char self[4096];
-  const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (len <= 0) return "fe-prep-mpi";
-  std::string dir(self, static_cast<std::size_t>(len));
-  dir.resize(dir.rfind('/') + 1);
-  return dir + "fe-prep-mpi";
-}
+// install's bin/ both hold the two).
+std::string petscProgram() { return programDirectory() + "fe-prep-mpi"; }
 
 // Replaces this process by fe-prep-mpi with the same arguments; returns only
 // on failure, with the reason.
