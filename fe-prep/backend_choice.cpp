@@ -25,10 +25,6 @@ std::string petscReason(const BodySpec& spec) {
   // initialisers alone cost ~40 MB and 0.2 s: docs/fe-prep.md).
   if (spec.shell) return spec.shell->rectangle ? "the panel is meshed by gmsh" : "the .geo outline is meshed by gmsh";
   if (spec.general && !spec.general->deck_mesh) return "the mesh file is read by gmsh";
-  // Built by the serial path too, but its attachment shapes came out up to
-  // 3e-5 apart from the PETSc program's (its eigenvalues 6e-11), a bound the
-  // comparison has not derived yet (docs/fe-prep.md, "Two programs").
-  if (spec.static_correction) return "modes: {static_correction} is built by the PETSc path only";
   return "";
 }
 

@@ -6,7 +6,7 @@
 #    against --backend petsc; compare_bodies.py says the bounds and why);
 # 3. it hands over, with the reason in the summary's solver line: under
 #    mpirun -n 2 (the same body again), a gmsh-meshed panel, a body the serial
-#    path does not build (backend_choice.cpp's list), --backend petsc; and
+#    path does not build (backend_choice.cpp's list: gmsh), --backend petsc; and
 #    --backend serial refuses a gmsh body with one message and exit 1.
 # 4. HDF5 is a module of the serial program: its ELF needs no HDF5, `--version`
 #    loads none, a body run loads it through libflexcomp_feprep_h5.so (for the
@@ -41,7 +41,7 @@ run() {  # run NAME BACKEND [launcher...]: the body of $HERE/NAME.yaml into $W/N
   "$@" "$FP" "$HERE/$name.yaml" -o "$W/$name-$be.h5" --backend "$be" > "$W/$name-$be.log" 2>&1
 }
 for case in deck_free:--shifted deck_held: deck_held_patches: deck_cb_points: deck_cb_patches: imported_free:--shifted \
-            deck_static_error: beam_free:--shifted beam_geometric:; do
+            deck_static_error: deck_static_correction:--shifted beam_free:--shifted beam_geometric:; do
   name=${case%%:*} opt=${case#*:}
   run "$name" serial || { bad "$name serial: $(tail -3 "$W/$name-serial.log")"; continue; }
   run "$name" petsc || { bad "$name petsc: $(tail -3 "$W/$name-petsc.log")"; continue; }
@@ -82,10 +82,6 @@ rc=$?
 grep -q "fe-prep: error: --backend serial cannot build this body: the panel is meshed by gmsh" "$W/strip2.log" ||
   bad "--backend serial on a gmsh body: $(cat "$W/strip2.log")"
 [ -e "$W/strip2.h5" ] && bad "--backend serial on a gmsh body left an output"
-# A body the serial path does not build yet (a static correction): handed over by the list.
-"$FP" "$HERE/deck_static_correction.yaml" -o "$W/sc.h5" > "$W/sc.log" 2>&1 || bad "static correction (auto) failed: $(tail -3 "$W/sc.log")"
-grep -q "solver: petsc.*static_correction} is built by the PETSc path only" "$W/sc.log" ||
-  bad "static correction: no hand-over said: $(grep solver "$W/sc.log")"
 # 4. Out of memory in the serial program: under ever larger address-space limits
 # (from below the libraries' floor up to the first success), every failure
 # above the floor (where `fe-prep --version` runs) is fe-prep's own: exit 1,
