@@ -30,7 +30,8 @@ are left out to keep CI short). Checked:
 - what the example shows: the knee reaches its minimum, panel 3 hits the hinge-2/3
   stop and comes to rest on it, the hinge-2/3 latch catches it, the cluster deploys
   (the R1 latch, within 10 % of the rigid model's 15.02-s phase 2, at below 0.3 rad/s:
-  the model file's flexible latches arrive at 0.10-0.13 rad/s), and the contact monitor
+  the model file's flexible latches arrive at 0.09-0.12 rad/s in the page's run of
+  2026-11-30, a figure phase 2's sensitivity moves by tens of percent: docs/sar-antenna.md), and the contact monitor
   reports every pair;
 - no body through another (docs/sar-antenna.md, "Hold-down E and snubber pads"): panel 2
   stays clear of panel 1 (B2-B1 above 0.05 m in phase 1, stowed 0.141 m; above 0 in
