@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "common/termination.h"
+#include "common/files.h"
 #include "common/h5error.h"
 #include "common/input.h"
 #include "common/memory.h"
@@ -57,9 +58,9 @@ namespace fc {
 std::string inputReferencePath() {
   namespace fs = std::filesystem;
   std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path() / "share/doc/flexcomp/input-reference.md";
+  // PREFIX/bin/TOOL: the prefix is its directory's parent.
+  if (const std::string bin = programDirectory(); !bin.empty()) {
+    const fs::path installed = fs::path(bin).parent_path().parent_path() / "share/doc/flexcomp/input-reference.md";
     if (fs::exists(installed, ec)) return installed.lexically_normal().string();
   }
   const fs::path source = fs::path(FLEXCOMP_SOURCE_DIR) / "docs/input-reference.md";

@@ -207,7 +207,7 @@ std::string directoryOf(const std::string& path) {
 std::string programDirectory() {
   char self[4096];
   const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (len <= 0) return "./";
+  if (len <= 0) return "";
   std::string dir(self, static_cast<std::size_t>(len));
   dir.resize(dir.rfind('/') + 1);
   return dir;

@@ -70,8 +70,9 @@ std::vector<std::string> inputFilesRead();
 // Directory part of a path ("." when none), and path joined relative to a file's dir.
 std::string directoryOf(const std::string& path);
 // The directory of this program's executable with its trailing '/', by
-// /proc/self/exe ("./" if unreadable): where a tool finds what is installed
-// beside it (fe-prep-mpi, fe-prep's HDF5 module).
+// /proc/self/exe ("" if unreadable: a name then resolves from the working
+// directory): where a tool finds what is installed beside it (fe-prep-mpi,
+// fe-prep's HDF5 module, PREFIX/share/doc).
 std::string programDirectory();
 std::string resolveRelativeTo(const std::string& including_file, const std::string& path);
 
